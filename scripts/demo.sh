@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Sets up, builds, and runs the main job on the built-in samples: every sample shader is
+# validated, assembled to bytecode (out/shaders/*.bin, *.hex) and disassembled back to text.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+bash scripts/build.sh
+sm2=build/release/tools/sm2
+mkdir -p out/shaders
+for src in samples/shaders/*.asm; do
+  name=$(basename "$src" .asm)
+  "$sm2" validate "$src"
+  "$sm2" asm "$src" -o "out/shaders/$name.bin"
+  "$sm2" asm "$src" --format hex -o "out/shaders/$name.hex"
+  "$sm2" dis "out/shaders/$name.bin" -o "out/shaders/$name.dis.asm"
+  echo "== $name: $(($(stat -c %s "out/shaders/$name.bin") / 4)) tokens"
+  cat "out/shaders/$name.hex"
+done
+echo "demo: outputs in out/shaders/"

@@ -1,0 +1,14 @@
+// Each subcommand of `sm2` registers itself on the app and runs from a callback that stores its
+// exit status. Exit statuses: 0 ok, 1 invalid input, 2 bad usage.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace sm2::tools {
+
+enum ExitStatus : int { kOk = 0, kInvalidInput = 1, kBadUsage = 2 };
+
+// Shader text and bytecode: `asm`, `dis`, `validate`.
+void add_shader_commands(CLI::App& app, int& status);
+
+}  // namespace sm2::tools

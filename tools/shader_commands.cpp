@@ -1,0 +1,246 @@
+// sm2 asm / dis / validate.
+#include <cctype>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "commands.h"
+#include "io.h"
+#include "sm2/assembler/assembler.h"
+#include "sm2/assembler/disassembler.h"
+#include "sm2/isa/bytecode.h"
+#include "sm2/isa/validator.h"
+
+namespace sm2::tools {
+
+namespace {
+
+std::string hex_word(uint32_t t) {
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "%08X", t);
+    return buf;
+}
+
+// Bytecode as hex words, one statement per line (version and END on their own lines).
+std::string format_hex(const std::vector<uint32_t>& tokens) {
+    std::string out;
+    auto decoded = isa::decode(tokens);
+    std::vector<size_t> starts;
+    if (decoded.ok())
+        for (const auto& ins : decoded.program->instructions) starts.push_back(ins.token_offset);
+    starts.push_back(tokens.size() - 1);  // END
+    size_t next = 0;
+    for (size_t i = 0; i < tokens.size(); ++i) {
+        if (i > 0) {
+            const bool new_line = next < starts.size() && starts[next] == i;
+            out += new_line ? '\n' : ' ';
+            if (new_line) ++next;
+        }
+        out += hex_word(tokens[i]);
+    }
+    return out + '\n';
+}
+
+std::string format_c_array(const std::vector<uint32_t>& tokens, const std::string& name) {
+    std::string out = "const unsigned int " + name + "[" + std::to_string(tokens.size()) + "] = {\n";
+    for (size_t i = 0; i < tokens.size(); ++i) {
+        if (i % 6 == 0) out += "   ";
+        out += " 0x" + hex_word(tokens[i]) + (i + 1 < tokens.size() ? "," : "");
+        if (i % 6 == 5 || i + 1 == tokens.size()) out += '\n';
+    }
+    return out + "};\n";
+}
+
+// Hex words separated by whitespace or commas, with optional 0x prefixes (the `--format hex`
+// and `--format c` outputs and hand-written dumps); nullopt if anything else is in the text.
+std::optional<std::vector<uint32_t>> parse_hex_words(std::string_view text) {
+    std::vector<uint32_t> words;
+    size_t i = 0;
+    auto skip_separators = [&] {
+        while (i < text.size() && (std::isspace(static_cast<unsigned char>(text[i])) || text[i] == ','))
+            ++i;
+    };
+    for (skip_separators(); i < text.size(); skip_separators()) {
+        if (text.compare(i, 2, "0x") == 0 || text.compare(i, 2, "0X") == 0) i += 2;
+        size_t digits = 0;
+        uint32_t value = 0;
+        while (i < text.size() && std::isxdigit(static_cast<unsigned char>(text[i]))) {
+            if (++digits > 8) return std::nullopt;
+            const char c = static_cast<char>(std::tolower(static_cast<unsigned char>(text[i])));
+            value = value << 4 | static_cast<uint32_t>(c <= '9' ? c - '0' : c - 'a' + 10);
+            ++i;
+        }
+        if (digits == 0) return std::nullopt;
+        words.push_back(value);
+    }
+    if (words.empty()) return std::nullopt;
+    return words;
+}
+
+std::string_view as_text(const std::vector<std::byte>& bytes) {
+    return {reinterpret_cast<const char*>(bytes.data()), bytes.size()};
+}
+
+void print_diagnostics(const std::vector<assembler::Diagnostic>& diagnostics) {
+    for (const auto& d : diagnostics) std::cerr << d.to_string() << '\n';
+}
+
+
+// Reads bytecode (binary or hex words); prints the error and returns nullopt on failure.
+std::optional<isa::Program> load_bytecode(const std::string& name, const std::vector<std::byte>& bytes) {
+    isa::DecodeResult result;
+    if (isa::looks_like_bytecode(bytes)) {
+        result = isa::decode_bytes(bytes);
+    } else if (auto words = parse_hex_words(as_text(bytes))) {
+        result = isa::decode(*words);
+    } else {
+        std::cerr << name << ": error: not shader bytecode (expected a vs/ps version token, "
+                             "binary or as hex words)\n";
+        return std::nullopt;
+    }
+    if (!result.ok()) {
+        std::cerr << name << ": error: " << result.error->to_string() << '\n';
+        return std::nullopt;
+    }
+    return std::move(*result.program);
+}
+
+bool looks_like_assembly(const std::vector<std::byte>& bytes) {
+    return !isa::looks_like_bytecode(bytes) && !parse_hex_words(as_text(bytes));
+}
+
+struct AsmOptions {
+    std::string input;
+    std::string output = "-";
+    std::string format;
+    std::string array_name = "g_shader";
+    bool no_validate = false;
+    unsigned max_slots = 0;
+};
+
+int run_asm(const AsmOptions& o) {
+    std::string error;
+    auto bytes = read_input(o.input, error);
+    if (!bytes) {
+        std::cerr << "sm2 asm: " << error << '\n';
+        return kInvalidInput;
+    }
+    assembler::AssembleOptions options;
+    options.file_name = display_name(o.input);
+    options.validate = !o.no_validate;
+    options.validation.max_instruction_slots = o.max_slots;
+    auto result = assembler::assemble(as_text(*bytes), options);
+    print_diagnostics(result.diagnostics);
+    if (!result.ok()) return kInvalidInput;
+
+    // Without -o the bytes go to the terminal, so hex is the default there.
+    const std::string format = !o.format.empty() ? o.format : (o.output == "-" ? "hex" : "bin");
+    bool written = false;
+    if (format == "bin")
+        written = write_output(o.output, isa::to_bytes(result.tokens), error);
+    else if (format == "hex")
+        written = write_output(o.output, format_hex(result.tokens), error);
+    else
+        written = write_output(o.output, format_c_array(result.tokens, o.array_name), error);
+    if (!written) {
+        std::cerr << "sm2 asm: " << error << '\n';
+        return kInvalidInput;
+    }
+    return kOk;
+}
+
+int run_dis(const std::string& input, const std::string& output) {
+    std::string error;
+    auto bytes = read_input(input, error);
+    if (!bytes) {
+        std::cerr << "sm2 dis: " << error << '\n';
+        return kInvalidInput;
+    }
+    auto program = load_bytecode(display_name(input), *bytes);
+    if (!program) return kInvalidInput;
+    if (!write_output(output, assembler::disassemble(*program), error)) {
+        std::cerr << "sm2 dis: " << error << '\n';
+        return kInvalidInput;
+    }
+    return kOk;
+}
+
+int run_validate(const std::string& input, unsigned max_slots) {
+    std::string error;
+    auto bytes = read_input(input, error);
+    if (!bytes) {
+        std::cerr << "sm2 validate: " << error << '\n';
+        return kInvalidInput;
+    }
+    const std::string name = display_name(input);
+    isa::ValidationOptions validation;
+    validation.max_instruction_slots = max_slots;
+
+    if (looks_like_assembly(*bytes)) {
+        assembler::AssembleOptions options;
+        options.file_name = name;
+        options.validation = validation;
+        auto result = assembler::assemble(as_text(*bytes), options);
+        print_diagnostics(result.diagnostics);
+        if (!result.ok()) return kInvalidInput;
+        std::cout << name << ": valid " << result.program->version.name() << '\n';
+        return kOk;
+    }
+    auto program = load_bytecode(name, *bytes);
+    if (!program) return kInvalidInput;
+    const auto violations = isa::validate(*program, validation);
+    for (const auto& v : violations) {
+        std::cerr << name;
+        if (v.instruction < program->instructions.size()) {
+            const auto& ins = program->instructions[v.instruction];
+            std::cerr << ": token " << ins.token_offset << " (byte 0x" << std::hex
+                      << ins.token_offset * 4 << std::dec << ")";
+        }
+        std::cerr << ": error: [" << isa::rule_name(v.rule) << "] " << v.message << '\n';
+        if (v.instruction < program->instructions.size())
+            std::cerr << "    "
+                      << assembler::format_instruction(program->version,
+                                                       program->instructions[v.instruction])
+                      << '\n';
+    }
+    if (!violations.empty()) return kInvalidInput;
+    std::cout << name << ": valid " << program->version.name() << '\n';
+    return kOk;
+}
+
+}  // namespace
+
+void add_shader_commands(CLI::App& app, int& status) {
+    auto asm_options = std::make_shared<AsmOptions>();
+    auto* asm_cmd = app.add_subcommand("asm", "Assemble vs_2_0/ps_2_0 text into D3D9 bytecode");
+    asm_cmd->add_option("input", asm_options->input, "Assembly file ('-' for stdin)")->required();
+    asm_cmd->add_option("-o,--output", asm_options->output, "Output file ('-' for stdout, the default)");
+    asm_cmd->add_option("--format", asm_options->format,
+                        "bin (raw DWORDs, default with -o), hex (default on stdout) or c (array)")
+        ->check(CLI::IsMember({"bin", "hex", "c"}));
+    asm_cmd->add_option("--name", asm_options->array_name, "Array name for --format c");
+    asm_cmd->add_flag("--no-validate", asm_options->no_validate,
+                      "Encode without running the validator (as Wine's assembler does)");
+    asm_cmd->add_option("--max-slots", asm_options->max_slots,
+                        "Raise the instruction-slot limit (e.g. 512 for ps_2_x-size shaders)");
+    asm_cmd->callback([asm_options, &status] { status = run_asm(*asm_options); });
+
+    auto dis_input = std::make_shared<std::string>();
+    auto dis_output = std::make_shared<std::string>("-");
+    auto* dis_cmd = app.add_subcommand("dis", "Disassemble D3D9 shader bytecode (binary or hex words)");
+    dis_cmd->add_option("input", *dis_input, "Bytecode file ('-' for stdin)")->required();
+    dis_cmd->add_option("-o,--output", *dis_output, "Output file ('-' for stdout, the default)");
+    dis_cmd->callback([dis_input, dis_output, &status] { status = run_dis(*dis_input, *dis_output); });
+
+    auto val_input = std::make_shared<std::string>();
+    auto val_slots = std::make_shared<unsigned>(0);
+    auto* val_cmd = app.add_subcommand(
+        "validate", "Check a shader (text or bytecode) against the documented vs_2_0/ps_2_0 rules");
+    val_cmd->add_option("input", *val_input, "Shader file ('-' for stdin)")->required();
+    val_cmd->add_option("--max-slots", *val_slots, "Raise the instruction-slot limit");
+    val_cmd->callback([val_input, val_slots, &status] { status = run_validate(*val_input, *val_slots); });
+}
+
+}  // namespace sm2::tools
