@@ -123,6 +123,8 @@ private:
             return std::nullopt;
         };
 
+        if (fields.predicated && info->layout != OperandLayout::Standard)
+            return DecodeError{at, std::string(info->mnemonic) + " cannot be predicated"};
         switch (info->layout) {
         case OperandLayout::Declaration: {
             if (auto e = want_length(2)) return e;

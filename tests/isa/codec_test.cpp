@@ -342,6 +342,7 @@ INSTANTIATE_TEST_SUITE_P(
         Malformed{"relative dest", {0xFFFE0200, 0x02000001, 0x800F2000, 0x80E40000, 0xFFFF}, 2, "vs_3_0"},
         Malformed{"dcl wrong length", {0xFFFE0200, 0x0300001F, 0x80000000, 0x900F0000, 0x0, 0xFFFF}, 1, "needs length 2"},
         Malformed{"dcl bad usage", {0xFFFE0200, 0x0200001F, 0x8000000F, 0x900F0000, 0xFFFF}, 2, "unknown dcl usage 15"},
+        Malformed{"predicated def", {0xFFFE0200, 0x15000051, 0xA00F0000, 0, 0, 0, 0, 0xFFFF}, 1, "cannot be predicated"},
         Malformed{"def short", {0xFFFE0200, 0x04000051, 0xA00F0000, 0, 0, 0, 0xFFFF}, 1, "needs length 5"},
         Malformed{"texld control 3", {0xFFFF0200, 0x03030042, 0x800F0000, 0xB0E40000, 0xA0E40800, 0xFFFF}, 1, "texld control 3"},
         Malformed{"control on mov", {0xFFFE0200, 0x02010001, 0x800F0000, 0x80E40000, 0xFFFF}, 1, "control bits"},
