@@ -11,4 +11,7 @@ enum ExitStatus : int { kOk = 0, kInvalidInput = 1, kBadUsage = 2 };
 // Shader text and bytecode: `asm`, `dis`, `validate`.
 void add_shader_commands(CLI::App& app, int& status);
 
+// Command streams: `cs pack`, `cs dump`.
+void add_stream_commands(CLI::App& app, int& status);
+
 }  // namespace sm2::tools

@@ -155,4 +155,21 @@ TEST(Cli, ValidateAcceptsEverySample) {
     }
 }
 
+TEST(Cli, CommandStreamPackThenDumpIsIdentical) {
+    const std::string text = std::string(SM2_SOURCE_DIR) + "/tests/fuzz/corpus/command_stream/triangle.sm2cs";
+    const std::string packed = tmp("triangle.sm2cb");
+    ASSERT_EQ(sm2("cs pack " + text + " -o " + packed).status, 0);
+    EXPECT_EQ(slurp(packed).substr(0, 4), "SM2C");
+    auto r = sm2("cs dump " + packed);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out, slurp(text));
+}
+
+TEST(Cli, CommandStreamErrorsNameTheLine) {
+    auto r = sm2("cs dump -", "sm2cs 1\nPresent\nDrawPrimitive TRIANGLELIST 0 1x\n");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("<stdin>:3:30: error: not a number '1x'"), std::string::npos) << r.err;
+    EXPECT_EQ(sm2("cs").status, 2);  // needs pack or dump
+}
+
 }  // namespace
