@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace {
 
@@ -24,7 +25,10 @@ std::string slurp(const std::string& path) {
     return s.str();
 }
 
-std::string tmp(const std::string& name) { return std::string(SM2_TEST_TMP) + "/" + name; }
+// ctest runs each test in its own process, in parallel: the pid keeps their files apart.
+std::string tmp(const std::string& name) {
+    return std::string(SM2_TEST_TMP) + "/" + std::to_string(getpid()) + "_" + name;
+}
 
 void write_file(const std::string& path, const std::string& text) {
     std::ofstream(path, std::ios::binary) << text;

@@ -1,0 +1,42 @@
+// A surface: one level (or cube face, or volume level) of texels stored in their D3DFORMAT's
+// exact memory layout. Textures are arrays of surfaces; render targets are surfaces.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "sm2/runtime/formats.h"
+
+namespace sm2::runtime {
+
+class Surface {
+public:
+    Surface() = default;
+    // Zero-filled storage. Compressed formats round width/height up to whole 4x4 blocks.
+    Surface(Format format, uint32_t width, uint32_t height, uint32_t depth = 1);
+
+    [[nodiscard]] Format format() const { return format_; }
+    [[nodiscard]] uint32_t width() const { return width_; }
+    [[nodiscard]] uint32_t height() const { return height_; }
+    [[nodiscard]] uint32_t depth() const { return depth_; }
+    // Bytes from one row of texels (or of 4x4 blocks) to the next, and from one slice to the next.
+    [[nodiscard]] size_t row_pitch() const { return row_pitch_; }
+    [[nodiscard]] size_t slice_pitch() const { return slice_pitch_; }
+    [[nodiscard]] std::vector<std::byte>& bytes() { return data_; }
+    [[nodiscard]] const std::vector<std::byte>& bytes() const { return data_; }
+
+    // The value a sampler sees at integer texel (x, y, z); coordinates must be in range.
+    [[nodiscard]] Float4 read(uint32_t x, uint32_t y, uint32_t z = 0) const;
+    // Stores with the format's conversion (not for compressed formats).
+    void write(uint32_t x, uint32_t y, uint32_t z, const Float4& value);
+    void fill(const Float4& value);
+
+private:
+    Format format_ = Format::Unknown;
+    uint32_t width_ = 0, height_ = 0, depth_ = 0;
+    size_t row_pitch_ = 0, slice_pitch_ = 0;
+    std::vector<std::byte> data_;
+};
+
+}  // namespace sm2::runtime

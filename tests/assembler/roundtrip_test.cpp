@@ -1,0 +1,241 @@
+// assemble -> disassemble -> assemble gives the same bytes; decode -> disassemble -> assemble too.
+#include <bit>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "helpers.h"
+#include "sm2/isa/opcodes.h"
+#include "sm2/isa/tokens.h"
+
+namespace sm2::assembler::test {
+namespace {
+
+std::vector<std::filesystem::path> asm_files(const char* folder) {
+    std::vector<std::filesystem::path> files;
+    const std::filesystem::path dir = std::filesystem::path(SM2_SOURCE_DIR) / folder;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
+        if (entry.path().extension() == ".asm") files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+std::vector<std::filesystem::path> corpus_files() { return asm_files("tests/assembler/corpus"); }
+
+std::string read_file(const std::filesystem::path& p) {
+    std::ifstream f(p);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+}
+
+// Checks the round trip of one text and returns its tokens.
+Tokens check_round_trip(const std::string& text) {
+    const AssembleResult first = assemble_unvalidated(text);
+    EXPECT_TRUE(first.ok()) << text << "\n" << diagnostics_text(first);
+    if (!first.ok()) return {};
+    const std::string printed = disassemble(*first.program);
+    const AssembleResult second = assemble_unvalidated(printed);
+    EXPECT_TRUE(second.ok()) << printed << "\n" << diagnostics_text(second);
+    if (!second.ok()) return {};
+    EXPECT_EQ(hex(second.tokens), hex(first.tokens)) << "printed:\n" << printed;
+    // The decoder's view of the bytes prints the same text.
+    const isa::DecodeResult decoded = isa::decode(first.tokens);
+    EXPECT_TRUE(decoded.ok()) << (decoded.error ? decoded.error->to_string() : "");
+    if (decoded.ok()) {
+        EXPECT_EQ(disassemble(*decoded.program), printed);
+    }
+    // Printing is stable: text of the reassembled program is the same.
+    EXPECT_EQ(disassemble(*second.program), printed);
+    return first.tokens;
+}
+
+TEST(RoundTrip, Corpus) {
+    const auto files = corpus_files();
+    ASSERT_GE(files.size(), 7u);
+    for (const auto& f : files) {
+        SCOPED_TRACE(f.filename().string());
+        check_round_trip(read_file(f));
+    }
+}
+
+// The sample scenes' shaders assemble, pass the validator and round-trip.
+TEST(RoundTrip, SampleShaders) {
+    for (const auto& f : asm_files("samples/shaders")) {
+        SCOPED_TRACE(f.filename().string());
+        const std::string text = read_file(f);
+        const AssembleResult validated = assemble(text);
+        EXPECT_TRUE(validated.ok()) << diagnostics_text(validated);
+        check_round_trip(text);
+    }
+}
+
+TEST(RoundTrip, InlinePrograms) {
+    const char* programs[] = {
+        "vs_2_0\nmov r0, c[a0.x]\nmov r0, c[a0.xy + 3]\nmov r0, c[a0.wzyx + 1].y\nmov r0, c[aL]\n",
+        "vs_2_0\ndef c0, -0.0, 0.1, 0.2, 0.3\ndef c1, 3.4028235e38, 1.17549435e-38, 1e-45, -1e-40\n",
+        "vs_2_0\ndef c0, 0x7FC00000, 0xFF800000, 0x7F800000, 0xFFFFFFFF\n",
+        "vs_2_0\ndefi i0, -2147483648, 2147483647, -1, 0\n",
+        "ps_2_0\ndcl_centroid_pp t0.xw\ndcl_pp v1.y\nmov_sat_pp r0.yzw, -t0.yzxw\n",
+        "ps_2_0\nsincos r0.x, r1.z\nsincos r0.y, r1.w, c0, c1\n",
+        "vs_2_0\nlabel l2047\nret\ncall l2047\ncallnz l5, !b15\nif !b3\nendif\n",
+        "ps_2_0\ndcl s0\ndcl_1d s1\ndcl_2d s2\ndcl_cube s3\ndcl_volume s4\n",
+    };
+    for (const char* p : programs) {
+        SCOPED_TRACE(p);
+        check_round_trip(p);
+    }
+}
+
+isa::Instruction mov(isa::SourceParameter src, uint8_t mask = isa::kMaskAll) {
+    isa::Instruction ins;
+    ins.opcode = isa::Opcode::Mov;
+    isa::DestinationParameter d;
+    d.write_mask = mask;
+    ins.dest = d;
+    ins.sources.push_back(src);
+    return ins;
+}
+
+// Every swizzle, every write mask and every address swizzle prints in a form that reads back.
+TEST(RoundTrip, AllSwizzlesMasksAndAddressComponents) {
+    isa::Program program;
+    program.version = {isa::ShaderType::Vertex, 2, 0};
+    for (int s = 0; s < 256; ++s) {
+        isa::SourceParameter src;
+        src.type = isa::RegisterType::Temp;
+        src.index = 1;
+        src.swizzle = static_cast<uint8_t>(s);
+        program.instructions.push_back(mov(src));
+        isa::SourceParameter rel;
+        rel.type = isa::RegisterType::Const;
+        rel.index = static_cast<uint16_t>(s);
+        rel.swizzle = static_cast<uint8_t>(255 - s);
+        rel.relative = isa::RelativeAddress{isa::RegisterType::Address, static_cast<uint8_t>(s)};
+        program.instructions.push_back(mov(rel));
+    }
+    for (uint8_t m = 1; m < 16; ++m) {
+        isa::SourceParameter src;
+        program.instructions.push_back(mov(src, m));
+    }
+    const Tokens expected = isa::encode(program);
+    const std::string text = disassemble(program);
+    const AssembleResult r = assemble_unvalidated(text);
+    ASSERT_TRUE(r.ok()) << diagnostics_text(r);
+    EXPECT_EQ(r.tokens, expected);
+}
+
+// def floats: the shortest decimal that reads back to the same bits, for many bit patterns.
+TEST(RoundTrip, DefFloatBitPatterns) {
+    std::vector<uint32_t> patterns = {0x00000000, 0x80000000, 0x3F800000, 0xBF800000, 0x00000001,
+                                      0x80000001, 0x007FFFFF, 0x00800000, 0x7F7FFFFF, 0xFF7FFFFF,
+                                      0x7F800000, 0xFF800000, 0x7FC00000, 0xFFC00001, 0x7F800001,
+                                      0x3DCCCCCD, 0x3EAAAAAB, 0x4B800001, 0x5F000000, 0x33D6BF95};
+    std::mt19937 rng(12345);
+    for (int i = 0; i < 20000; ++i) patterns.push_back(rng());
+    // Every exponent with random mantissas, so tiny and huge magnitudes are well covered.
+    for (uint32_t e = 0; e < 256; ++e)
+        for (int k = 0; k < 8; ++k) patterns.push_back((e << 23) | (rng() & 0x807FFFFF));
+    isa::Program program;
+    program.version = {isa::ShaderType::Vertex, 2, 0};
+    for (size_t i = 0; i < patterns.size(); i += 4) {
+        isa::Instruction def;
+        def.opcode = isa::Opcode::Def;
+        isa::DestinationParameter d;
+        d.type = isa::RegisterType::Const;
+        d.index = static_cast<uint16_t>((i / 4) % 2048);
+        def.dest = d;
+        for (size_t k = 0; k < 4; ++k)
+            def.constant_bits[k] = i + k < patterns.size() ? patterns[i + k] : 0;
+        program.instructions.push_back(def);
+    }
+    const Tokens expected = isa::encode(program);
+    const std::string text = disassemble(program);
+    const AssembleResult r = assemble_unvalidated(text);
+    ASSERT_TRUE(r.ok()) << diagnostics_text(r);
+    ASSERT_EQ(r.tokens.size(), expected.size());
+    for (size_t i = 0; i < expected.size(); ++i)
+        ASSERT_EQ(r.tokens[i], expected[i]) << "token " << i;
+    // Finite values print without exponent or hex (Wine reads them too).
+    for (uint32_t bits : patterns) {
+        isa::Program one;
+        one.version = program.version;
+        isa::Instruction def = program.instructions[0];
+        def.constant_bits = {bits, 0, 0, 0};
+        const std::string line = format_instruction(one.version, def);
+        const float f = std::bit_cast<float>(bits);
+        if (f - f == 0.0f) {
+            EXPECT_EQ(line.find_first_of("eEx", 4), std::string::npos) << line;
+        }
+    }
+}
+
+TEST(Disassembler, Formatting) {
+    const isa::ShaderVersion vs{isa::ShaderType::Vertex, 2, 0};
+    const AssembleResult r = assemble_unvalidated(
+        "vs_2_0\n"
+        "mov_sat r0.xy, -c[a0.x + 5].yzxw\n"
+        "mov r0, r1.xyyy\n"
+        "mov r0, r1.xxxx\n"
+        "mov r0, r1.xyzw\n"
+        "mov r0, r1.xyww\n"
+        "mov r0, c10[aL]\n"
+        "mov r0, c[a0]\n"
+        "def c0, 0.5, -0, 1024, 0.1\n"
+        "def c1, 0x7FC00000, 1e39, 0, 0\n"
+        "mov oFog, r0.x\n"
+        "if !b2\n");
+    ASSERT_TRUE(r.ok()) << diagnostics_text(r);
+    EXPECT_EQ(disassemble(*r.program),
+              "vs_2_0\n"
+              "def c0, 0.5, -0, 1024, 0.1\n"
+              "def c1, 0x7FC00000, 0x7F800000, 0, 0\n"
+              "mov_sat r0.xy, -c[a0.x + 5].yzxw\n"
+              "mov r0, r1.xy\n"
+              "mov r0, r1.x\n"
+              "mov r0, r1\n"
+              "mov r0, r1.xyw\n"
+              "mov r0, c[aL + 10]\n"
+              "mov r0, c[a0]\n"
+              "mov oFog, r0.x\n"
+              "if !b2\n");
+    const AssembleResult p = assemble_unvalidated(
+        "ps_2_0\ndcl_centroid t0.xy\ndcl_2d s0\ndcl s1\ntexldp_pp r0, t0, s0\ntexkill t0.xyz\n"
+        "sincos r1.xy, r0.x\nmov oC0, r0\n");
+    ASSERT_TRUE(p.ok()) << diagnostics_text(p);
+    EXPECT_EQ(disassemble(*p.program),
+              "ps_2_0\n"
+              "dcl_centroid t0.xy\n"
+              "dcl_2d s0\n"
+              "dcl s1\n"
+              "texldp_pp r0, t0, s0\n"
+              "texkill t0.xyz\n"
+              "sincos r1.xy, r0.x\n"
+              "mov oC0, r0\n");
+    (void)vs;
+}
+
+TEST(Disassembler, CommentBlocksArePrintedAndSkipped) {
+    // A compiler blob: version, CTAB comment of 3 DWORDs, mov, END.
+    const Tokens blob = {0xFFFF0200, isa::tokens::encode_comment(3), 0x42415443, 0x1, 0x2,
+                         0x02000001, 0x800F0800, 0xA0E40000, 0x0000FFFF};
+    const isa::DecodeResult d = isa::decode(blob);
+    ASSERT_TRUE(d.ok()) << d.error->to_string();
+    const std::string text = disassemble(*d.program);
+    EXPECT_EQ(text, "ps_2_0\n// comment: 3 DWORDs\nmov oC0, c0\n");
+    // Reassembled without the comment (assemblers write none).
+    EXPECT_EQ(hex(assemble_tokens(text)), "FFFF0200 02000001 800F0800 A0E40000 0000FFFF");
+}
+
+TEST(Disassembler, VertexDeclarationsPrintTheirUsage) {
+    const AssembleResult r = assemble_unvalidated(
+        "vs_2_0\ndcl_position v0\ndcl_texcoord3 v5.xy\ndcl_color1 v10\ndcl_normal12 v15\n");
+    ASSERT_TRUE(r.ok());
+    EXPECT_EQ(disassemble(*r.program),
+              "vs_2_0\ndcl_position v0\ndcl_texcoord3 v5.xy\ndcl_color1 v10\ndcl_normal12 v15\n");
+}
+
+}  // namespace
+}  // namespace sm2::assembler::test
