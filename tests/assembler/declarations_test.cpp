@@ -182,7 +182,7 @@ std::string read_corpus(const char* name) {
 }
 
 TEST(WorkedExamples, A) {
-    const std::string text = read_corpus("example_a.asm");
+    const std::string text = read_corpus("example_a_ps.asm");
     ASSERT_FALSE(text.empty());
     EXPECT_EQ(hex(assemble_tokens(text)),
               "FFFF0200 "
@@ -202,7 +202,7 @@ TEST(WorkedExamples, A) {
 }
 
 TEST(WorkedExamples, B) {
-    const std::string text = read_corpus("example_b.asm");
+    const std::string text = read_corpus("example_b_vs.asm");
     ASSERT_FALSE(text.empty());
     EXPECT_EQ(hex(assemble_tokens(text)),
               "FFFE0200 "
@@ -224,7 +224,7 @@ TEST(WorkedExamples, B) {
 }
 
 TEST(WorkedExamples, C) {
-    const std::string text = read_corpus("example_c.asm");
+    const std::string text = read_corpus("example_c_flow.asm");
     ASSERT_FALSE(text.empty());
     EXPECT_EQ(hex(assemble_tokens(text)),
               "FFFE0200 "
