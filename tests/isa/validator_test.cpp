@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "isa/program_builder.h"
+#include "isa/worked_examples.h"
 #include "sm2/isa/bytecode.h"
 #include "sm2/isa/validator.h"
 
@@ -89,69 +90,19 @@ Program decode_or_die(const std::vector<uint32_t>& tokens) {
 // documented as valid: _sat on lrp and _pp on texldp are allowed (§7), c0.x is a whitelisted
 // replicate swizzle, t0.xy covers the 2D lookup, the cube lookup through t1 reads .xyzw (texldp).
 TEST(ValidatorExamples, ExampleA) {
-    const Program p = decode_or_die({
-        0xFFFF0200,
-        0x0200001F, 0x80000000, 0xB0030000,
-        0x0200001F, 0x80000000, 0xB00F0001,
-        0x0200001F, 0x80000000, 0x900F0000,
-        0x0200001F, 0x90000000, 0xA00F0800,
-        0x0200001F, 0x98000000, 0xA00F0801,
-        0x05000051, 0xA00F0000, 0x3F000000, 0x3F800000, 0x00000000, 0x3E800000,
-        0x03000042, 0x800F0000, 0xB0E40000, 0xA0E40800,
-        0x03010042, 0x802F0001, 0xB0E40001, 0xA0E40801,
-        0x03000005, 0x802F0000, 0x80E40000, 0x90E40000,
-        0x04000012, 0x801F0002, 0xA0000000, 0x80E40000, 0x80E40001,
-        0x02000001, 0x80080002, 0xA0550000,
-        0x02000001, 0x800F0800, 0x80E40002,
-        0x0000FFFF,
-    });
+    const Program p = decode_or_die(examples::kExampleA);
     EXPECT_TRUE(Clean(validate(p)));
 }
 
 // Example B: vs_2_0 with m4x4, mova + c[a0.x + 5], sincos with the documented constants, oFog.
 TEST(ValidatorExamples, ExampleB) {
-    const Program p = decode_or_die({
-        0xFFFE0200,
-        0x0200001F, 0x80000000, 0x900F0000,
-        0x0200001F, 0x80000003, 0x900F0001,
-        0x0200001F, 0x80000005, 0x900F0002,
-        0x05000051, 0xA00F0008, 0x3F800000, 0x00000000, 0x3F000000, 0x40000000,
-        0x05000051, 0xA00F0009, 0xB5D00D01, 0xB7B60B61, 0x3B2AAAAB, 0x39888889,
-        0x05000051, 0xA00F000A, 0xBCAAAAAB, 0xBE000000, 0x3F800000, 0x3F000000,
-        0x03000014, 0xC00F0000, 0x90E40000, 0xA0E40000,
-        0x03000008, 0x80010000, 0x90E40001, 0xA0E40004,
-        0x0300000B, 0x80010000, 0x80000000, 0xA0550008,
-        0x0200002E, 0xB0010000, 0xA0FF0008,
-        0x04000005, 0xD00F0000, 0x80000000, 0xA0E42005, 0xB0000000,
-        0x04000025, 0x80030001, 0x90000002, 0xA0E40009, 0xA0E4000A,
-        0x02000001, 0xE0030000, 0x80E40001,
-        0x02000001, 0xC00F0001, 0xA0000008,
-        0x0000FFFF,
-    });
+    const Program p = decode_or_die(examples::kExampleB);
     EXPECT_TRUE(Clean(validate(p)));
 }
 
 // Example C: vs_2_0 loop/aL, if, call/label/ret.
 TEST(ValidatorExamples, ExampleC) {
-    const Program p = decode_or_die({
-        0xFFFE0200,
-        0x0200001F, 0x80000000, 0x900F0000,
-        0x0200002F, 0xE00F0800, 0x00000001,
-        0x05000030, 0xF00F0000, 0x00000004, 0x00000000, 0x00000001, 0x00000000,
-        0x02000001, 0x800F0000, 0x90E40000,
-        0x0200001B, 0xF0E40800, 0xF0E40000,
-        0x04000002, 0x800F0000, 0x80E40000, 0xA0E4200A, 0xF0E40800,
-        0x0000001D,
-        0x01000028, 0xE0E40800,
-        0x01000019, 0xA0E41001,
-        0x0000002B,
-        0x02000001, 0xC00F0000, 0x80E40000,
-        0x0000001C,
-        0x0100001E, 0xA0E41001,
-        0x03000005, 0x800F0000, 0x80E40000, 0xA0E40002,
-        0x0000001C,
-        0x0000FFFF,
-    });
+    const Program p = decode_or_die(examples::kExampleC);
     EXPECT_TRUE(Clean(validate(p)));
 }
 
