@@ -12,7 +12,7 @@ bash scripts/build.sh
 ctest --test-dir build/release --output-on-failure -j "$jobs"
 
 if [ "${SM2_SKIP_SANITIZERS:-0}" != 1 ]; then
-  cmake -S . -B build/sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug \
+  cmake -S . -B build/sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
         -DCMAKE_CXX_COMPILER=clang++ -DSM2_SANITIZE=ON -DSM2_FUZZ=ON \
         -DSM2_BUILD_BENCHMARKS=OFF >/dev/null
   cmake --build build/sanitize -j "$jobs"
