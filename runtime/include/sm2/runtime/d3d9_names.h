@@ -1,0 +1,69 @@
+// D3D9's enum vocabulary as data: the names a command stream uses for render states, sampler
+// states and their values, primitive types, declaration types, usages and methods. Names are
+// matched with or without their D3D prefix ("CULLMODE" = "D3DRS_CULLMODE", "NONE" =
+// "D3DCULL_NONE"), case-sensitively, as D3D9 spells them.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+
+namespace sm2::runtime {
+
+enum class EnumFamily : uint8_t {
+    RenderState,     // D3DRS_*
+    SamplerState,    // D3DSAMP_*
+    PrimitiveType,   // D3DPT_*
+    DeclType,        // D3DDECLTYPE_*
+    DeclMethod,      // D3DDECLMETHOD_*
+    DeclUsage,       // D3DDECLUSAGE_*
+    ZBufferType,     // D3DZB_*
+    FillMode,        // D3DFILL_*
+    ShadeMode,       // D3DSHADE_*
+    Blend,           // D3DBLEND_*
+    BlendOp,         // D3DBLENDOP_*
+    Cull,            // D3DCULL_*
+    Cmp,             // D3DCMP_*
+    StencilOp,       // D3DSTENCILOP_*
+    FogMode,         // D3DFOG_*
+    TextureAddress,  // D3DTADDRESS_*
+    TextureFilter,   // D3DTEXF_*
+    ClearFlags,      // D3DCLEAR_* (bits)
+    ColorWrite,      // D3DCOLORWRITEENABLE_* (bits)
+    Bool,            // TRUE / FALSE
+};
+
+// How the DWORD value of a render or sampler state is written in a command stream.
+enum class StateValueKind : uint8_t {
+    Enum,     // a name of `family`
+    Bool,     // TRUE / FALSE
+    Float,    // a float stored as its bits (FOGSTART, DEPTHBIAS, MIPMAPLODBIAS, ...)
+    Color,    // a D3DCOLOR, 0xAARRGGBB
+    Bits,     // a mask or flag word (STENCILMASK, CLIPPLANEENABLE, COLORWRITEENABLE, ...)
+    Integer,  // a plain number (ALPHAREF, STENCILREF, MAXMIPLEVEL, MAXANISOTROPY, ...)
+};
+
+struct StateInfo {
+    uint32_t id;               // D3DRENDERSTATETYPE / D3DSAMPLERSTATETYPE value
+    std::string_view name;     // without prefix: "CULLMODE"
+    StateValueKind kind;
+    EnumFamily family;         // for kind == Enum (ColorWrite/Bool otherwise unused)
+};
+
+// Render and sampler states sm2emu knows (pipeline.md §16, §17).
+[[nodiscard]] std::span<const StateInfo> render_states();
+[[nodiscard]] std::span<const StateInfo> sampler_states();
+[[nodiscard]] const StateInfo* find_render_state(std::string_view name);
+[[nodiscard]] const StateInfo* find_render_state(uint32_t id);
+[[nodiscard]] const StateInfo* find_sampler_state(std::string_view name);
+[[nodiscard]] const StateInfo* find_sampler_state(uint32_t id);
+
+// Value of `name` in `family`; for bit families (ClearFlags, ColorWrite) a single flag name.
+[[nodiscard]] std::optional<uint32_t> enum_value(EnumFamily family, std::string_view name);
+// Name (without prefix) of `value` in `family`; empty if it has none.
+[[nodiscard]] std::string_view enum_name(EnumFamily family, uint32_t value);
+// The prefix of a family ("D3DRS_", "D3DCULL_", ...).
+[[nodiscard]] std::string_view enum_prefix(EnumFamily family);
+
+}  // namespace sm2::runtime

@@ -1,0 +1,211 @@
+// D3D9 enum names and values (d3d9types.h; pipeline.md §1, §2, §16-§18).
+#include "sm2/runtime/d3d9_names.h"
+
+#include <array>
+
+namespace sm2::runtime {
+
+namespace {
+
+using F = EnumFamily;
+using K = StateValueKind;
+
+struct Name {
+    uint32_t value;
+    std::string_view name;
+};
+
+struct Family {
+    EnumFamily family;
+    std::string_view prefix;
+    std::span<const Name> names;
+};
+
+constexpr Name kPrimitiveTypes[] = {{1, "POINTLIST"}, {2, "LINELIST"}, {3, "LINESTRIP"},
+                                    {4, "TRIANGLELIST"}, {5, "TRIANGLESTRIP"}, {6, "TRIANGLEFAN"}};
+constexpr Name kDeclTypes[] = {
+    {0, "FLOAT1"}, {1, "FLOAT2"}, {2, "FLOAT3"}, {3, "FLOAT4"}, {4, "D3DCOLOR"}, {5, "UBYTE4"},
+    {6, "SHORT2"}, {7, "SHORT4"}, {8, "UBYTE4N"}, {9, "SHORT2N"}, {10, "SHORT4N"},
+    {11, "USHORT2N"}, {12, "USHORT4N"}, {13, "UDEC3"}, {14, "DEC3N"}, {15, "FLOAT16_2"},
+    {16, "FLOAT16_4"}, {17, "UNUSED"}};
+constexpr Name kDeclMethods[] = {{0, "DEFAULT"}, {1, "PARTIALU"}, {2, "PARTIALV"}, {3, "CROSSUV"},
+                                 {4, "UV"}, {5, "LOOKUP"}, {6, "LOOKUPPRESAMPLED"}};
+constexpr Name kDeclUsages[] = {
+    {0, "POSITION"}, {1, "BLENDWEIGHT"}, {2, "BLENDINDICES"}, {3, "NORMAL"}, {4, "PSIZE"},
+    {5, "TEXCOORD"}, {6, "TANGENT"}, {7, "BINORMAL"}, {8, "TESSFACTOR"}, {9, "POSITIONT"},
+    {10, "COLOR"}, {11, "FOG"}, {12, "DEPTH"}, {13, "SAMPLE"}};
+constexpr Name kZBufferTypes[] = {{0, "FALSE"}, {1, "TRUE"}, {2, "USEW"}};
+constexpr Name kFillModes[] = {{1, "POINT"}, {2, "WIREFRAME"}, {3, "SOLID"}};
+constexpr Name kShadeModes[] = {{1, "FLAT"}, {2, "GOURAUD"}, {3, "PHONG"}};
+constexpr Name kBlends[] = {
+    {1, "ZERO"}, {2, "ONE"}, {3, "SRCCOLOR"}, {4, "INVSRCCOLOR"}, {5, "SRCALPHA"},
+    {6, "INVSRCALPHA"}, {7, "DESTALPHA"}, {8, "INVDESTALPHA"}, {9, "DESTCOLOR"},
+    {10, "INVDESTCOLOR"}, {11, "SRCALPHASAT"}, {12, "BOTHSRCALPHA"}, {13, "BOTHINVSRCALPHA"},
+    {14, "BLENDFACTOR"}, {15, "INVBLENDFACTOR"}, {16, "SRCCOLOR2"}, {17, "INVSRCCOLOR2"}};
+constexpr Name kBlendOps[] = {{1, "ADD"}, {2, "SUBTRACT"}, {3, "REVSUBTRACT"}, {4, "MIN"}, {5, "MAX"}};
+constexpr Name kCulls[] = {{1, "NONE"}, {2, "CW"}, {3, "CCW"}};
+constexpr Name kCmps[] = {{1, "NEVER"}, {2, "LESS"}, {3, "EQUAL"}, {4, "LESSEQUAL"},
+                          {5, "GREATER"}, {6, "NOTEQUAL"}, {7, "GREATEREQUAL"}, {8, "ALWAYS"}};
+constexpr Name kStencilOps[] = {{1, "KEEP"}, {2, "ZERO"}, {3, "REPLACE"}, {4, "INCRSAT"},
+                                {5, "DECRSAT"}, {6, "INVERT"}, {7, "INCR"}, {8, "DECR"}};
+constexpr Name kFogModes[] = {{0, "NONE"}, {1, "EXP"}, {2, "EXP2"}, {3, "LINEAR"}};
+constexpr Name kTextureAddresses[] = {{1, "WRAP"}, {2, "MIRROR"}, {3, "CLAMP"}, {4, "BORDER"},
+                                      {5, "MIRRORONCE"}};
+constexpr Name kTextureFilters[] = {{0, "NONE"}, {1, "POINT"}, {2, "LINEAR"}, {3, "ANISOTROPIC"},
+                                    {6, "PYRAMIDALQUAD"}, {7, "GAUSSIANQUAD"}, {8, "CONVOLUTIONMONO"}};
+constexpr Name kClearFlags[] = {{1, "TARGET"}, {2, "ZBUFFER"}, {4, "STENCIL"}};
+constexpr Name kColorWrites[] = {{1, "RED"}, {2, "GREEN"}, {4, "BLUE"}, {8, "ALPHA"}};
+constexpr Name kBools[] = {{0, "FALSE"}, {1, "TRUE"}};
+
+// clang-format off
+constexpr StateInfo kRenderStates[] = {
+    {7, "ZENABLE", K::Enum, F::ZBufferType},       {8, "FILLMODE", K::Enum, F::FillMode},
+    {9, "SHADEMODE", K::Enum, F::ShadeMode},       {14, "ZWRITEENABLE", K::Bool, F::Bool},
+    {15, "ALPHATESTENABLE", K::Bool, F::Bool},     {16, "LASTPIXEL", K::Bool, F::Bool},
+    {19, "SRCBLEND", K::Enum, F::Blend},           {20, "DESTBLEND", K::Enum, F::Blend},
+    {22, "CULLMODE", K::Enum, F::Cull},            {23, "ZFUNC", K::Enum, F::Cmp},
+    {24, "ALPHAREF", K::Integer, F::Bool},         {25, "ALPHAFUNC", K::Enum, F::Cmp},
+    {26, "DITHERENABLE", K::Bool, F::Bool},        {27, "ALPHABLENDENABLE", K::Bool, F::Bool},
+    {28, "FOGENABLE", K::Bool, F::Bool},           {29, "SPECULARENABLE", K::Bool, F::Bool},
+    {34, "FOGCOLOR", K::Color, F::Bool},           {35, "FOGTABLEMODE", K::Enum, F::FogMode},
+    {36, "FOGSTART", K::Float, F::Bool},           {37, "FOGEND", K::Float, F::Bool},
+    {38, "FOGDENSITY", K::Float, F::Bool},         {48, "RANGEFOGENABLE", K::Bool, F::Bool},
+    {52, "STENCILENABLE", K::Bool, F::Bool},       {53, "STENCILFAIL", K::Enum, F::StencilOp},
+    {54, "STENCILZFAIL", K::Enum, F::StencilOp},   {55, "STENCILPASS", K::Enum, F::StencilOp},
+    {56, "STENCILFUNC", K::Enum, F::Cmp},          {57, "STENCILREF", K::Integer, F::Bool},
+    {58, "STENCILMASK", K::Bits, F::Bool},         {59, "STENCILWRITEMASK", K::Bits, F::Bool},
+    {60, "TEXTUREFACTOR", K::Color, F::Bool},
+    {128, "WRAP0", K::Bits, F::Bool}, {129, "WRAP1", K::Bits, F::Bool}, {130, "WRAP2", K::Bits, F::Bool},
+    {131, "WRAP3", K::Bits, F::Bool}, {132, "WRAP4", K::Bits, F::Bool}, {133, "WRAP5", K::Bits, F::Bool},
+    {134, "WRAP6", K::Bits, F::Bool}, {135, "WRAP7", K::Bits, F::Bool},
+    {136, "CLIPPING", K::Bool, F::Bool},           {137, "LIGHTING", K::Bool, F::Bool},
+    {139, "AMBIENT", K::Color, F::Bool},           {140, "FOGVERTEXMODE", K::Enum, F::FogMode},
+    {141, "COLORVERTEX", K::Bool, F::Bool},        {142, "LOCALVIEWER", K::Bool, F::Bool},
+    {143, "NORMALIZENORMALS", K::Bool, F::Bool},   {152, "CLIPPLANEENABLE", K::Bits, F::Bool},
+    {154, "POINTSIZE", K::Float, F::Bool},         {155, "POINTSIZE_MIN", K::Float, F::Bool},
+    {156, "POINTSPRITEENABLE", K::Bool, F::Bool},  {157, "POINTSCALEENABLE", K::Bool, F::Bool},
+    {158, "POINTSCALE_A", K::Float, F::Bool},      {159, "POINTSCALE_B", K::Float, F::Bool},
+    {160, "POINTSCALE_C", K::Float, F::Bool},      {161, "MULTISAMPLEANTIALIAS", K::Bool, F::Bool},
+    {162, "MULTISAMPLEMASK", K::Bits, F::Bool},    {166, "POINTSIZE_MAX", K::Float, F::Bool},
+    {168, "COLORWRITEENABLE", K::Bits, F::ColorWrite}, {171, "BLENDOP", K::Enum, F::BlendOp},
+    {174, "SCISSORTESTENABLE", K::Bool, F::Bool},  {175, "SLOPESCALEDEPTHBIAS", K::Float, F::Bool},
+    {176, "ANTIALIASEDLINEENABLE", K::Bool, F::Bool}, {185, "TWOSIDEDSTENCILMODE", K::Bool, F::Bool},
+    {186, "CCW_STENCILFAIL", K::Enum, F::StencilOp}, {187, "CCW_STENCILZFAIL", K::Enum, F::StencilOp},
+    {188, "CCW_STENCILPASS", K::Enum, F::StencilOp}, {189, "CCW_STENCILFUNC", K::Enum, F::Cmp},
+    {190, "COLORWRITEENABLE1", K::Bits, F::ColorWrite}, {191, "COLORWRITEENABLE2", K::Bits, F::ColorWrite},
+    {192, "COLORWRITEENABLE3", K::Bits, F::ColorWrite}, {193, "BLENDFACTOR", K::Color, F::Bool},
+    {194, "SRGBWRITEENABLE", K::Bool, F::Bool},    {195, "DEPTHBIAS", K::Float, F::Bool},
+    {198, "WRAP8", K::Bits, F::Bool}, {199, "WRAP9", K::Bits, F::Bool}, {200, "WRAP10", K::Bits, F::Bool},
+    {201, "WRAP11", K::Bits, F::Bool}, {202, "WRAP12", K::Bits, F::Bool}, {203, "WRAP13", K::Bits, F::Bool},
+    {204, "WRAP14", K::Bits, F::Bool}, {205, "WRAP15", K::Bits, F::Bool},
+    {206, "SEPARATEALPHABLENDENABLE", K::Bool, F::Bool}, {207, "SRCBLENDALPHA", K::Enum, F::Blend},
+    {208, "DESTBLENDALPHA", K::Enum, F::Blend},    {209, "BLENDOPALPHA", K::Enum, F::BlendOp},
+};
+
+constexpr StateInfo kSamplerStates[] = {
+    {1, "ADDRESSU", K::Enum, F::TextureAddress},  {2, "ADDRESSV", K::Enum, F::TextureAddress},
+    {3, "ADDRESSW", K::Enum, F::TextureAddress},  {4, "BORDERCOLOR", K::Color, F::Bool},
+    {5, "MAGFILTER", K::Enum, F::TextureFilter},  {6, "MINFILTER", K::Enum, F::TextureFilter},
+    {7, "MIPFILTER", K::Enum, F::TextureFilter},  {8, "MIPMAPLODBIAS", K::Float, F::Bool},
+    {9, "MAXMIPLEVEL", K::Integer, F::Bool},      {10, "MAXANISOTROPY", K::Integer, F::Bool},
+    {11, "SRGBTEXTURE", K::Bool, F::Bool},        {12, "ELEMENTINDEX", K::Integer, F::Bool},
+    {13, "DMAPOFFSET", K::Integer, F::Bool},
+};
+// clang-format on
+
+constexpr std::array<Name, 0> kNoNames{};
+
+const Family kFamilies[] = {
+    {F::RenderState, "D3DRS_", kNoNames},
+    {F::SamplerState, "D3DSAMP_", kNoNames},
+    {F::PrimitiveType, "D3DPT_", kPrimitiveTypes},
+    {F::DeclType, "D3DDECLTYPE_", kDeclTypes},
+    {F::DeclMethod, "D3DDECLMETHOD_", kDeclMethods},
+    {F::DeclUsage, "D3DDECLUSAGE_", kDeclUsages},
+    {F::ZBufferType, "D3DZB_", kZBufferTypes},
+    {F::FillMode, "D3DFILL_", kFillModes},
+    {F::ShadeMode, "D3DSHADE_", kShadeModes},
+    {F::Blend, "D3DBLEND_", kBlends},
+    {F::BlendOp, "D3DBLENDOP_", kBlendOps},
+    {F::Cull, "D3DCULL_", kCulls},
+    {F::Cmp, "D3DCMP_", kCmps},
+    {F::StencilOp, "D3DSTENCILOP_", kStencilOps},
+    {F::FogMode, "D3DFOG_", kFogModes},
+    {F::TextureAddress, "D3DTADDRESS_", kTextureAddresses},
+    {F::TextureFilter, "D3DTEXF_", kTextureFilters},
+    {F::ClearFlags, "D3DCLEAR_", kClearFlags},
+    {F::ColorWrite, "D3DCOLORWRITEENABLE_", kColorWrites},
+    {F::Bool, "", kBools},
+};
+
+const Family& family_of(EnumFamily family) {
+    for (const Family& f : kFamilies)
+        if (f.family == family) return f;
+    return kFamilies[0];
+}
+
+std::string_view strip(std::string_view name, std::string_view prefix) {
+    if (!prefix.empty() && name.substr(0, prefix.size()) == prefix) name.remove_prefix(prefix.size());
+    return name;
+}
+
+const StateInfo* find_state(std::span<const StateInfo> table, std::string_view prefix,
+                            std::string_view name) {
+    name = strip(name, prefix);
+    for (const StateInfo& s : table)
+        if (s.name == name) return &s;
+    return nullptr;
+}
+
+const StateInfo* find_state(std::span<const StateInfo> table, uint32_t id) {
+    for (const StateInfo& s : table)
+        if (s.id == id) return &s;
+    return nullptr;
+}
+
+}  // namespace
+
+std::span<const StateInfo> render_states() { return kRenderStates; }
+std::span<const StateInfo> sampler_states() { return kSamplerStates; }
+const StateInfo* find_render_state(std::string_view name) {
+    return find_state(kRenderStates, "D3DRS_", name);
+}
+const StateInfo* find_render_state(uint32_t id) { return find_state(kRenderStates, id); }
+const StateInfo* find_sampler_state(std::string_view name) {
+    return find_state(kSamplerStates, "D3DSAMP_", name);
+}
+const StateInfo* find_sampler_state(uint32_t id) { return find_state(kSamplerStates, id); }
+
+std::optional<uint32_t> enum_value(EnumFamily family, std::string_view name) {
+    if (family == EnumFamily::RenderState) {
+        const StateInfo* s = find_render_state(name);
+        return s ? std::optional<uint32_t>(s->id) : std::nullopt;
+    }
+    if (family == EnumFamily::SamplerState) {
+        const StateInfo* s = find_sampler_state(name);
+        return s ? std::optional<uint32_t>(s->id) : std::nullopt;
+    }
+    const Family& f = family_of(family);
+    name = strip(name, f.prefix);
+    for (const Name& n : f.names)
+        if (n.name == name) return n.value;
+    return std::nullopt;
+}
+
+std::string_view enum_name(EnumFamily family, uint32_t value) {
+    if (family == EnumFamily::RenderState) {
+        const StateInfo* s = find_render_state(value);
+        return s ? s->name : std::string_view{};
+    }
+    if (family == EnumFamily::SamplerState) {
+        const StateInfo* s = find_sampler_state(value);
+        return s ? s->name : std::string_view{};
+    }
+    for (const Name& n : family_of(family).names)
+        if (n.value == value) return n.name;
+    return {};
+}
+
+std::string_view enum_prefix(EnumFamily family) { return family_of(family).prefix; }
+
+}  // namespace sm2::runtime
