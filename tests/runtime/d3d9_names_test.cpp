@@ -20,6 +20,10 @@ TEST(D3D9Names, RenderStatesByNameAndNumber) {
     EXPECT_EQ(find_render_state(193u)->kind, StateValueKind::Color);   // BLENDFACTOR
     EXPECT_EQ(find_render_state(23u)->family, EnumFamily::Cmp);        // ZFUNC
     EXPECT_EQ(find_render_state("cullmode"), nullptr);                 // D3D spelling only
+    // fixed-function and tessellator states are known but ignored with shaders (§16)
+    EXPECT_TRUE(find_render_state("LIGHTING")->fixed_function);
+    EXPECT_TRUE(find_render_state(184u)->fixed_function);  // ENABLEADAPTIVETESSELLATION
+    EXPECT_FALSE(find_render_state("CULLMODE")->fixed_function);
     EXPECT_EQ(find_render_state(1u), nullptr);
     std::set<uint32_t> ids;
     for (const auto& s : render_states()) EXPECT_TRUE(ids.insert(s.id).second) << s.name;

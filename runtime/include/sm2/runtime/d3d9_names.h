@@ -49,6 +49,8 @@ struct StateInfo {
     std::string_view name;     // without prefix: "CULLMODE"
     StateValueKind kind;
     EnumFamily family;         // for kind == Enum (ColorWrite/Bool otherwise unused)
+    bool fixed_function = false;  // fixed-function or tessellator state: accepted, and ignored
+                                  // while shaders are bound (pipeline.md §16)
 };
 
 // Render and sampler states sm2emu knows (pipeline.md §16, §17).

@@ -1,0 +1,138 @@
+// Shader engine throughput: lanes x executed instructions per second for representative shaders
+// in every precision mode and both transcendental modes. Reported, never asserted.
+//   build/release/bench/shader_bench --benchmark_counters_tabular=true
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "sm2/assembler/assembler.h"
+#include "sm2/emu/engine.h"
+
+namespace {
+
+using namespace sm2;
+
+std::string read_sample(const std::string& name) {
+    std::ifstream in(std::string(SM2_SOURCE_DIR) + "/samples/shaders/" + name);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// A procedural two-colour checkerboard, so the textured shader's figure measures the engine and
+// not texture fetch (texture sampling has its own benchmark).
+class CheckerSampler final : public emu::Sampler {
+public:
+    void sample(const emu::TextureRequest& request, std::array<emu::FloatLanes, 4>& texels) override {
+        const auto& uv = *request.coordinates;
+        for (unsigned lane = 0; lane < emu::kBatchLanes; ++lane) {
+            const bool odd = (static_cast<int>(std::floor(uv[0][lane] * 8)) + static_cast<int>(std::floor(uv[1][lane] * 8))) & 1;
+            const float v = odd ? 1.0f : 0.25f;
+            texels[0][lane] = v;
+            texels[1][lane] = v;
+            texels[2][lane] = v;
+            texels[3][lane] = 1.0f;
+        }
+    }
+};
+
+struct Mode {
+    emu::Precision precision;
+    bool pp_fp16;
+    emu::Transcendentals transcendentals;
+};
+
+constexpr Mode kModes[] = {
+    {emu::Precision::Fp32, false, emu::Transcendentals::Exact},
+    {emu::Precision::Fp32, false, emu::Transcendentals::Fast},
+    {emu::Precision::Fp24, false, emu::Transcendentals::Exact},
+    {emu::Precision::Fp24, true, emu::Transcendentals::Exact},  // "fp16": fp24 + _pp in s10e5
+    {emu::Precision::Fp64, false, emu::Transcendentals::Exact},
+};
+
+const char* mode_label(const Mode& m) {
+    if (m.precision == emu::Precision::Fp64) return "fp64";
+    if (m.pp_fp16) return "fp16(pp)";
+    if (m.precision == emu::Precision::Fp24) return "fp24";
+    return m.transcendentals == emu::Transcendentals::Fast ? "fp32/fast" : "fp32";
+}
+
+template <typename BatchType>
+void run(benchmark::State& state, const emu::Executable& executable, const emu::ConstantFile& constants,
+         emu::Sampler* sampler) {
+    auto batch = std::make_unique<BatchType>();
+    for (unsigned lane = 0; lane < emu::kBatchLanes; ++lane)
+        for (unsigned s = 0; s < emu::slot::kCount; ++s)
+            for (unsigned c = 0; c < 4; ++c)
+                if (s >= emu::slot::kInputFirst && s < emu::slot::kTexCoordFirst + emu::slot::kTexCoordCount)
+                    batch->registers[s][c][lane] = 0.1f * static_cast<float>(lane + c + 1);
+    for (auto _ : state) {
+        emu::execute(executable, constants, *batch, sampler);
+        benchmark::DoNotOptimize(batch->registers[emu::slot::kPosition][0][0]);
+    }
+    const double work = static_cast<double>(executable.executed_instructions()) * emu::kBatchLanes;
+    state.counters["lane_instr/s"] = benchmark::Counter(work, benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["instr"] = executable.executed_instructions();
+}
+
+void shader_benchmark(benchmark::State& state, const std::string& file, const Mode& mode,
+                      const emu::StaticFlowConstants& flow) {
+    auto assembled = assembler::assemble(read_sample(file));
+    if (!assembled.ok()) {
+        state.SkipWithError(("cannot assemble " + file).c_str());
+        return;
+    }
+    auto shader = emu::Shader::create(*assembled.program);
+    emu::LoweringOptions options;
+    options.precision.precision = mode.precision;
+    options.precision.partial_precision_fp16 = mode.pp_fp16;
+    options.precision.transcendentals = mode.transcendentals;
+    auto lowered = emu::lower(*shader.shader, flow, options);
+    if (!lowered.executable) {
+        state.SkipWithError(lowered.error.c_str());
+        return;
+    }
+    std::vector<std::array<float, 4>> app(256, {0.5f, 0.25f, 0.125f, 1.0f});
+    const emu::ConstantFile constants = lowered.executable->bind_constants(app);
+    CheckerSampler sampler;
+    state.SetLabel(mode_label(mode));
+    if (mode.precision == emu::Precision::Fp64)
+        run<emu::ReferenceBatch>(state, *lowered.executable, constants, &sampler);
+    else
+        run<emu::Batch>(state, *lowered.executable, constants, &sampler);
+}
+
+void register_all() {
+    emu::StaticFlowConstants four_lights;
+    four_lights.integers[0] = {4, 16, 2, 0};
+    const emu::StaticFlowConstants none;
+    for (const Mode& mode : kModes) {
+        const std::string label = mode_label(mode);
+        benchmark::RegisterBenchmark(("phong_4_lights_vs/" + label).c_str(),
+                                     [mode, four_lights](benchmark::State& s) {
+                                         shader_benchmark(s, "phong_lights.vs.asm", mode, four_lights);
+                                     });
+        benchmark::RegisterBenchmark(("textured_phong_ps/" + label).c_str(), [mode, none](benchmark::State& s) {
+            shader_benchmark(s, "textured_phong.ps.asm", mode, none);
+        });
+        benchmark::RegisterBenchmark(("alu64_ps/" + label).c_str(), [mode, none](benchmark::State& s) {
+            shader_benchmark(s, "alu64.ps.asm", mode, none);
+        });
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    register_all();
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}
