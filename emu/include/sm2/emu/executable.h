@@ -1,0 +1,106 @@
+// The executable form of a shader for one draw: a straight list of steps with every operand
+// resolved to a lane slot, a constant, or a relatively addressed constant. No branches remain.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "sm2/emu/precision.h"
+#include "sm2/isa/opcodes.h"
+#include "sm2/isa/version.h"
+
+namespace sm2::emu {
+
+// Number of lane slots (slot::kCount in batch.h; repeated here so this header stands alone).
+constexpr unsigned kSlotCount = 74;
+
+enum class OperandKind : uint8_t {
+    Lanes,             // a per-lane register: index = slot
+    Constant,          // c#: index = constant register (c[aL + n] is resolved to this)
+    RelativeConstant,  // c[a0.? + n]: index = n, address_component = ?; chosen per lane
+    Zero,              // a constant read outside the constant file: (0,0,0,0)
+};
+
+struct StepSource {
+    OperandKind kind = OperandKind::Lanes;
+    uint16_t index = 0;
+    uint8_t swizzle = 0xE4;          // component read for result channel c: (swizzle >> 2c) & 3
+    bool negate = false;
+    uint8_t address_component = 0;   // RelativeConstant: which component of a0
+    uint8_t channels = 0xF;          // result channels this source is read for (bit c)
+    friend bool operator==(const StepSource&, const StepSource&) = default;
+};
+
+struct StepDest {
+    uint16_t slot = 0;               // lane slot written (unused for texkill)
+    uint8_t mask = 0xF;
+    bool saturate = false;
+    bool address = false;            // mova: writes a0 instead of a slot
+    ResultRounding rounding = ResultRounding::None;
+    friend bool operator==(const StepDest&, const StepDest&) = default;
+};
+
+struct Step {
+    isa::Opcode opcode = isa::Opcode::Nop;  // matrix macros appear as dp3/dp4 steps
+    uint8_t control = 0;                    // texld variant (isa::kTexLd*)
+    uint8_t source_count = 0;
+    uint8_t sampler = 0;                    // texld: s#
+    StepDest dest;
+    std::array<StepSource, 3> sources{};
+    uint32_t origin = 0;                    // index of the instruction in the Program
+    friend bool operator==(const Step&, const Step&) = default;
+};
+
+// Float constants as one draw sees them: the application's values with the shader's def
+// values written over them (the application's stored values are not changed).
+struct ConstantFile {
+    std::vector<std::array<float, 4>> registers;
+};
+
+class Executable {
+public:
+    Executable(isa::ShaderVersion version, Precision precision, unsigned constant_count,
+               std::vector<Step> steps, std::vector<std::pair<unsigned, std::array<float, 4>>> defs,
+               uint32_t executed_instructions, Transcendentals transcendentals = Transcendentals::Exact)
+        : version_(version), precision_(precision), transcendentals_(transcendentals),
+          constant_count_(constant_count), steps_(std::move(steps)), defs_(std::move(defs)),
+          executed_instructions_(executed_instructions) {
+        summarize_register_use();
+    }
+
+    [[nodiscard]] isa::ShaderVersion version() const { return version_; }
+    [[nodiscard]] Precision precision() const { return precision_; }
+    [[nodiscard]] Transcendentals transcendentals() const { return transcendentals_; }
+    [[nodiscard]] std::span<const Step> steps() const { return steps_; }
+    [[nodiscard]] unsigned constant_count() const { return constant_count_; }
+    // Instructions the original shader executes for this draw (the limit lowering checked).
+    [[nodiscard]] uint32_t executed_instructions() const { return executed_instructions_; }
+    // Per lane slot (slot::k*), the components the steps read / write (bit c = component c).
+    // Tells the runtime which vertex attributes to fetch and which interpolants to set up
+    // (inputs), and which outputs the shader produces.
+    [[nodiscard]] const std::array<uint8_t, kSlotCount>& components_read() const { return components_read_; }
+    [[nodiscard]] const std::array<uint8_t, kSlotCount>& components_written() const { return components_written_; }
+    // Once per draw: the application's constants (missing ones read (0,0,0,0)) with the
+    // shader's def values on top.
+    [[nodiscard]] ConstantFile bind_constants(std::span<const std::array<float, 4>> application = {}) const;
+    // One line per step ("dp4 oPos.x, v0, c0"), for tests and debugging.
+    [[nodiscard]] std::string describe() const;
+
+private:
+    void summarize_register_use();
+
+    isa::ShaderVersion version_;
+    Precision precision_;
+    Transcendentals transcendentals_;
+    unsigned constant_count_;
+    std::vector<Step> steps_;
+    std::vector<std::pair<unsigned, std::array<float, 4>>> defs_;
+    uint32_t executed_instructions_;
+    std::array<uint8_t, kSlotCount> components_read_{};
+    std::array<uint8_t, kSlotCount> components_written_{};
+};
+
+}  // namespace sm2::emu

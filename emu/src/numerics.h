@@ -1,0 +1,299 @@
+// The numeric policy: every special value of the engine is decided here and nowhere else, and
+// each decision is listed in docs/numerics.md with its source. The functions are templates over
+// the storage type (float, or double in the fp64 reference mode) and small enough to inline
+// into the interpreter's lane loops.
+#pragma once
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "sm2/emu/precision.h"
+
+namespace sm2::emu::numerics {
+
+template <typename Real>
+constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
+
+// --- multiplication ---------------------------------------------------------------------
+// D3D9 hardware multiplies "legacy" style: 0 * anything = +0, including 0 * inf and 0 * NaN
+// (games depend on it; DXVK's d3d9 float emulation and AMD's v_mul_legacy do the same). Used
+// by every product of the instruction set: mul, mad, dp2add, dp3, dp4, the matrix macros,
+// lrp, crs, nrm, dst, lit.
+template <typename Real>
+inline Real mul(Real a, Real b) {
+    // Computed unconditionally and selected with `|` rather than `||`: no branch, so the lane
+    // loops stay vectorizable.
+    const Real product = a * b;
+    const bool either_zero = (a == Real(0)) | (b == Real(0));
+    return either_zero ? Real(0) : product;
+}
+// mad: the product rounded, then the sum rounded (no fused multiply-add).
+template <typename Real>
+inline Real mad(Real a, Real b, Real c) {
+    return mul(a, b) + c;
+}
+
+// --- reciprocal and reciprocal square root --------------------------------------------------
+// rcp of zero: +0 -> +inf; rcp of -0 -> -inf (IEEE sign of the reciprocal; D3D10 says the
+// same). rcp(1) = 1 exactly (docs); rcp(+-inf) = +-0; NaN stays NaN.
+template <typename Real>
+inline Real rcp(Real x) {
+    const Real reciprocal = Real(1) / x;  // IEEE division: +-inf for +-0, +-0 for +-inf
+    return x == Real(1) ? Real(1) : reciprocal;
+}
+
+// rsq: 1/sqrt(|x|) (the sign is ignored); rsq of zero (either sign) = +inf; rsq(1) = 1
+// exactly; rsq(inf) = 0; NaN stays NaN.
+template <typename Real>
+inline Real rsq(Real x) {
+    const Real a = std::fabs(x);
+    const Real reciprocal_root = Real(1) / std::sqrt(a);
+    return a == Real(1) ? Real(1) : reciprocal_root;
+}
+
+// --- exponential and logarithm ---------------------------------------------------------------
+// exp: 2^x; exp(-inf) = 0, exp(+inf) = +inf, NaN stays NaN. expp (vs_2_0) is the same value
+// (the docs only ask for 10 bits).
+template <typename Real>
+inline Real exp2(Real x) {
+    return std::exp2(x);
+}
+
+// log: log2(|x|); log of zero (either sign) = -inf (hardware; the docs' pseudo-code says
+// -FLT_MAX); log(inf) = inf; NaN stays NaN. logp (vs_2_0) is the same value.
+template <typename Real>
+inline Real log2(Real x) {
+    return std::log2(std::fabs(x));
+}
+
+// pow: |base| ^ exponent with IEEE pow's special cases on the absolute base: 0^0 = 1,
+// 0^(+y) = 0, 0^(-y) = +inf, x^0 = 1, 1^y = 1 (even for NaN y).
+template <typename Real>
+inline Real pow(Real base, Real exponent) {
+    return std::pow(std::fabs(base), exponent);
+}
+
+// --- comparisons: NaN follows the literal pseudo-code (a false test picks the second value) ---
+template <typename Real>
+inline Real min(Real a, Real b) { return a < b ? a : b; }
+template <typename Real>
+inline Real max(Real a, Real b) { return a >= b ? a : b; }
+template <typename Real>
+inline Real slt(Real a, Real b) { return a < b ? Real(1) : Real(0); }
+template <typename Real>
+inline Real sge(Real a, Real b) { return a >= b ? Real(1) : Real(0); }
+// cmp: -0 >= 0 is true; NaN picks the third operand.
+template <typename Real>
+inline Real cmp(Real c, Real a, Real b) { return c >= Real(0) ? a : b; }
+// sgn: -1, 0 (for +-0) or 1; NaN gives 1 (literal pseudo-code).
+template <typename Real>
+inline Real sgn(Real a) { return a < Real(0) ? Real(-1) : (a == Real(0) ? Real(0) : Real(1)); }
+
+// _sat: clamp to [0, 1]; saturate(NaN) = 0 (D3D9 does not say; D3D10 defines 0); -0 -> +0.
+template <typename Real>
+inline Real saturate(Real x) {
+    return x > Real(0) ? (x < Real(1) ? x : Real(1)) : Real(0);
+}
+
+// frc: x - floor(x), kept in [0, 1): a tiny negative x whose difference rounds up to 1 gives
+// the largest value below 1. frc(+-inf) = NaN (inf - inf), NaN stays NaN.
+template <typename Real>
+inline Real frc(Real x) {
+    const Real f = x - std::floor(x);
+    return f >= Real(1) ? std::nextafter(Real(1), Real(0)) : f;
+}
+
+// --- vector helpers ------------------------------------------------------------------------
+// nrm of a zero vector: the docs' factor FLT_MAX (not rsq(0) = inf), so x, y, z come out as 0
+// through the legacy multiply and w as w * FLT_MAX.
+template <typename Real>
+inline Real nrm_factor(Real length_squared) {
+    return length_squared != Real(0) ? rsq(length_squared) : Real(std::numeric_limits<float>::max());
+}
+
+// lit: the specular power is clamped to [-127.9961, 127.9961] (8.8 fixed point in the docs).
+constexpr float kLitPowerLimit = 127.9961f;
+template <typename Real>
+inline Real lit_power_clamp(Real p) {
+    const Real limit = Real(kLitPowerLimit);
+    return p < -limit ? -limit : (p > limit ? limit : p);
+}
+
+// mova: round to nearest, halves away from zero (Wine's sign(x) * floor(|x| + 0.5)). Values
+// that are NaN or beyond +-2^24 become an address no constant has, so relative reads with it
+// return (0,0,0,0).
+constexpr int32_t kInvalidAddress = -(1 << 30);
+template <typename Real>
+inline int32_t mova_round(Real x) {
+    const Real r = std::round(x);
+    const bool valid = r >= Real(-16777216) && r <= Real(16777216);
+    const auto address = static_cast<int32_t>(valid ? r : Real(0));
+    return valid ? address : kInvalidAddress;
+}
+
+// texkill: a lane is discarded when any of the four components is below zero (Wine's test
+// results on Windows hardware for SM2; -0 and NaN do not kill).
+template <typename Real>
+inline bool kills(Real x, Real y, Real z, Real w) {
+    return (x < Real(0)) | (y < Real(0)) | (z < Real(0)) | (w < Real(0));
+}
+
+// --- fast transcendentals (Transcendentals::Fast) ----------------------------------------------
+// Branch-free float approximations (selects only, no library calls) so the lane loops
+// vectorize. Each meets the documented minimum precision of its instruction and keeps the
+// special values of the exact functions above. Measured errors are in docs/numerics.md.
+namespace fast {
+
+// Rounds to the nearest integer (ties to even) for |x| < 2^22: adding 1.5 * 2^23 leaves no
+// fraction bits.
+inline float round_small(float x) {
+    constexpr float kMagic = 12582912.0f;
+    return (x + kMagic) - kMagic;
+}
+
+// 2^x: x = k + f with |f| <= 0.5; 2^f = e^(f ln 2) by its Taylor series to degree 7 (remainder
+// below 2^-27); 2^k built in the exponent field in two halves so that 2^-151 .. 2^129 cover
+// denormal results and overflow to inf. Documented minimum: 21 bits.
+inline float exp2(float x) {
+    const float clamped = x < -151.0f ? -151.0f : (x > 129.0f ? 129.0f : x);
+    const float finite = x == x ? clamped : 0.0f;  // NaN is put back at the end
+    const float k = round_small(finite);
+    const float f = (finite - k) * 0.693147180559945309f;  // f * ln 2
+    float p = 1.0f / 5040.0f;
+    p = p * f + 1.0f / 720.0f;
+    p = p * f + 1.0f / 120.0f;
+    p = p * f + 1.0f / 24.0f;
+    p = p * f + 1.0f / 6.0f;
+    p = p * f + 0.5f;
+    p = p * f + 1.0f;
+    p = p * f + 1.0f;
+    const auto exponent = static_cast<int32_t>(k);
+    const int32_t half = exponent / 2;
+    const int32_t rest = exponent - half;
+    const float scale_a = std::bit_cast<float>(static_cast<uint32_t>(half + 127) << 23);
+    const float scale_b = std::bit_cast<float>(static_cast<uint32_t>(rest + 127) << 23);
+    const float result = p * scale_a * scale_b;
+    return x == x ? result : x;
+}
+
+// log2(|x|): |x| = m * 2^e with m in [sqrt(1/2), sqrt(2)); ln m = 2 atanh(s), s = (m-1)/(m+1),
+// |s| <= 0.1716, by its series to s^11 (remainder below 2^-30). Denormals are scaled by 2^23
+// first. 0 -> -inf, inf -> inf, NaN -> NaN. Documented minimum: 21 bits.
+inline float log2(float x) {
+    const float a = std::fabs(x);
+    const bool denormal = a < 0x1p-126f;
+    const float normal = denormal ? a * 0x1p23f : a;
+    const auto bits = std::bit_cast<uint32_t>(normal);
+    float exponent = static_cast<float>(static_cast<int32_t>(bits >> 23) - 127) - (denormal ? 23.0f : 0.0f);
+    float m = std::bit_cast<float>((bits & 0x007FFFFFu) | 0x3F800000u);
+    const bool high = m > 1.41421356f;
+    m = high ? m * 0.5f : m;
+    exponent = high ? exponent + 1.0f : exponent;
+    const float s = (m - 1.0f) / (m + 1.0f);
+    const float s2 = s * s;
+    float p = 2.0f / 11.0f;
+    p = p * s2 + 2.0f / 9.0f;
+    p = p * s2 + 2.0f / 7.0f;
+    p = p * s2 + 2.0f / 5.0f;
+    p = p * s2 + 2.0f / 3.0f;
+    p = p * s2 + 2.0f;
+    const float result = exponent + (p * s) * 1.44269504088896341f;  // ln m / ln 2
+    const float special = a == 0.0f ? -kInfinity<float> : a;        // 0 -> -inf; inf, NaN stay
+    const bool not_finite_or_zero = (a == 0.0f) | (a == kInfinity<float>) | (a != a);
+    return not_finite_or_zero ? special : result;
+}
+
+// |base|^exponent = 2^(exponent * log2|base|) with the special cases of the exact pow: x^0 = 1
+// and 1^y = 1 (even for NaN); 0 and inf come out of log2/exp2 right (0^+y = 0, 0^-y = inf).
+// Documented minimum: 15 bits (the product's rounding costs about |exponent * log2|base|| *
+// 2^-24 relative, at most 2^-17 for results inside the float range).
+inline float pow(float base, float exponent) {
+    const float a = std::fabs(base);
+    const float result = exp2(exponent * log2(a));
+    const bool always_one = (exponent == 0.0f) | (a == 1.0f);
+    return always_one ? 1.0f : result;
+}
+
+// sin and cos: the angle is reduced to [-pi, pi] (2 pi in two parts), then the half-angle
+// polynomial the D3DSINCOSCONST constants are made for (instructions.md §7). Documented maximum
+// absolute error: 0.002 (this polynomial: 0.0018 for sin, 0.0007 for cos).
+inline void sincos(float x, float& sine, float& cosine) {
+    const float turns = round_small(x * 0.159154943091895336f);  // x / (2 pi)
+    const bool reducible = (turns == turns) & (std::fabs(turns) < 4194304.0f);
+    const float finite_turns = reducible ? turns : 0.0f;
+    const float r = (x - finite_turns * 6.28318548f) + finite_turns * 1.7484555e-7f;
+    const float z = r * r;
+    const float h = ((-1.5500992e-6f * z + 0.00026041668f) * z - 0.020833334f) * z + 0.5f;  // sin(r/2)/r
+    const float c = ((-2.1701389e-5f * z + 0.0026041667f) * z - 0.125f) * z + 1.0f;        // cos(r/2)
+    const float half_sine = h * r;
+    cosine = 1.0f - 2.0f * half_sine * half_sine;
+    sine = 2.0f * half_sine * c;
+}
+
+}  // namespace fast
+
+// --- precision modes -----------------------------------------------------------------------
+// Denormals: fp32 and fp64 keep IEEE denormals (the engine never sets flush-to-zero); fp24
+// has none (flushed to signed zero, as the s16e7 format has no denormals); fp16 keeps IEEE
+// half denormals.
+
+namespace detail {
+// Rounds the 23-bit mantissa of a finite float to `kept` bits, to nearest even. A carry out of
+// the mantissa correctly bumps the exponent.
+template <int kept>
+inline uint32_t round_mantissa_bits(uint32_t bits) {
+    constexpr int dropped = 23 - kept;
+    constexpr uint32_t half = (1u << (dropped - 1)) - 1u;
+    const uint32_t lowest_kept = (bits >> dropped) & 1u;
+    return (bits + half + lowest_kept) & ~((1u << dropped) - 1u);
+}
+inline bool is_inf_or_nan(float x) { return (std::bit_cast<uint32_t>(x) & 0x7F800000u) == 0x7F800000u; }
+}  // namespace detail
+
+// Both roundings are branch-free (inline, selects only) so that storing a step's result stays
+// a vectorized loop.
+
+// fp24 = s16e7: 16 mantissa bits, exponent bias 63, normal range [2^-62, (2 - 2^-16) * 2^63].
+// Round to nearest even on the mantissa; beyond the range: +-inf; below 2^-62: +-0.
+inline float round_to_fp24(float x) {
+    const float rounded = std::bit_cast<float>(detail::round_mantissa_bits<16>(std::bit_cast<uint32_t>(x)));
+    const float magnitude = std::fabs(rounded);
+    const float ranged = magnitude >= 0x1p64f   ? std::copysign(kInfinity<float>, x)
+                         : magnitude < 0x1p-62f ? std::copysign(0.0f, x)
+                                                : rounded;
+    return detail::is_inf_or_nan(x) ? x : ranged;
+}
+
+// fp16 = IEEE binary16 (s10e5): round to nearest even, max 65504, denormals down to 2^-24.
+inline float round_to_fp16(float x) {
+    const float magnitude = std::fabs(x);
+    // Half denormals are multiples of 2^-24; 0.5 has exactly that spacing, so adding and
+    // removing it rounds to the nearest multiple (ties to even).
+    const float denormal = std::copysign((magnitude + 0.5f) - 0.5f, x);
+    const float normal = std::bit_cast<float>(detail::round_mantissa_bits<10>(std::bit_cast<uint32_t>(x)));
+    // 65520 is halfway between 65504 (largest half) and 65536: ties go to even = overflow.
+    const float ranged = magnitude >= 65520.0f  ? std::copysign(kInfinity<float>, x)
+                         : magnitude < 0x1p-14f ? denormal
+                                                : normal;
+    return detail::is_inf_or_nan(x) ? x : ranged;
+}
+
+// The rounding a step's result gets, decided once per step when a shader is lowered.
+[[nodiscard]] ResultRounding result_rounding(const PrecisionOptions& options, bool pixel_shader,
+                                             bool partial_precision);
+
+inline float round_result(float x, ResultRounding rounding) {
+    switch (rounding) {
+    case ResultRounding::Fp24: return round_to_fp24(x);
+    case ResultRounding::Fp16: return round_to_fp16(x);
+    case ResultRounding::None: break;
+    }
+    return x;
+}
+inline double round_result(double x, ResultRounding rounding) {
+    return rounding == ResultRounding::None ? x : round_result(static_cast<float>(x), rounding);
+}
+
+}  // namespace sm2::emu::numerics

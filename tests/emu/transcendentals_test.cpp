@@ -1,0 +1,179 @@
+// The fast transcendentals over dense sweeps, against double-precision references: each must
+// meet the documented minimum precision (instructions.md §5) and keep the special values of
+// the numeric policy. The measured maxima are printed (docs/numerics.md quotes them).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+
+#include "emu/engine_test_support.h"
+
+namespace sm2::test {
+namespace {
+
+// Runs "op r0, v0.x[, v1.x]" (or sincos) in fast or exact mode over `xs` (and `ys`) and returns
+// component `component` of r0 for each input.
+std::vector<float> evaluate(Opcode opcode, const std::vector<float>& xs, const std::vector<float>& ys,
+                            emu::Transcendentals mode, unsigned component = 0) {
+    ProgramBuilder p(ShaderType::Vertex);
+    if (opcode == Opcode::SinCos)
+        p.op(opcode, rd(0).mask("xy"), {v(0).swz("x"), c(0), c(1)});
+    else if (opcode == Opcode::Pow)
+        p.op(opcode, rd(0), {v(0).swz("x"), v(1).swz("x")});
+    else
+        p.op(opcode, rd(0), {v(0).swz("x")});
+    emu::LoweringOptions options;
+    options.keep_dead_code = true;
+    options.precision.transcendentals = mode;
+    const auto exe = lower_or_fail(p.program(), {}, options);
+    const auto constants = exe.bind_constants();
+    std::vector<float> out(xs.size());
+    emu::Batch batch;
+    for (size_t first = 0; first < xs.size(); first += emu::kBatchLanes) {
+        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+            const size_t k = std::min(first + l, xs.size() - 1);
+            batch.input(0)[0][l] = xs[k];
+            batch.input(1)[0][l] = ys.empty() ? 0.0f : ys[k];
+        }
+        emu::execute(exe, constants, batch);
+        for (unsigned l = 0; l < emu::kBatchLanes && first + l < xs.size(); ++l)
+            out[first + l] = batch.temp(0)[component][l];
+    }
+    return out;
+}
+
+std::vector<float> linear_sweep(float from, float to, size_t count) {
+    std::vector<float> xs(count);
+    for (size_t k = 0; k < count; ++k)
+        xs[k] = static_cast<float>(from + (static_cast<double>(to) - from) * static_cast<double>(k) / static_cast<double>(count - 1));
+    return xs;
+}
+
+TEST(FastTranscendentals, Exp2MeetsTwentyOneBits) {
+    const auto xs = linear_sweep(-125.0f, 127.0f, 400000);
+    const auto fast = evaluate(Opcode::Exp, xs, {}, emu::Transcendentals::Fast);
+    const auto exact = evaluate(Opcode::Exp, xs, {}, emu::Transcendentals::Exact);
+    double worst = 0, worst_exact = 0;
+    for (size_t k = 0; k < xs.size(); ++k) {
+        const double reference = std::exp2(static_cast<double>(xs[k]));
+        worst = std::max(worst, std::fabs(fast[k] - reference) / reference);
+        worst_exact = std::max(worst_exact, std::fabs(exact[k] - reference) / reference);
+    }
+    std::printf("exp2: max relative error fast %.3g (2^%.1f), exact %.3g (2^%.1f)\n", worst, std::log2(worst),
+                worst_exact, std::log2(worst_exact));
+    EXPECT_LT(worst, std::ldexp(1.0, -21));
+}
+
+TEST(FastTranscendentals, Exp2SpecialValues) {
+    const auto fast = evaluate(Opcode::Exp, {0.0f, 3.0f, -1.0f, -kInf, kInf, kNaN, 200.0f, -200.0f, -140.0f}, {},
+                               emu::Transcendentals::Fast);
+    EXPECT_EQ(fast[0], 1.0f);
+    EXPECT_EQ(fast[1], 8.0f);
+    EXPECT_EQ(fast[2], 0.5f);
+    EXPECT_TRUE(same_bits(fast[3], 0.0f));
+    EXPECT_EQ(fast[4], kInf);
+    EXPECT_TRUE(std::isnan(fast[5]));
+    EXPECT_EQ(fast[6], kInf);
+    EXPECT_TRUE(same_bits(fast[7], 0.0f));
+    EXPECT_EQ(fast[8], 0x1p-140f);  // denormal result
+}
+
+TEST(FastTranscendentals, Log2MeetsTwentyOneBits) {
+    std::vector<float> xs;
+    for (double e = -149.0; e < 128.0; e += 0.0007) xs.push_back(static_cast<float>(std::exp2(e)));
+    for (const float x : linear_sweep(0.5f, 2.0f, 100000)) xs.push_back(x);
+    const auto fast = evaluate(Opcode::Log, xs, {}, emu::Transcendentals::Fast);
+    const auto exact = evaluate(Opcode::Log, xs, {}, emu::Transcendentals::Exact);
+    // 21 bits of the result: absolute below 1, relative above (a float result near 127 has
+    // an ulp of 2^-17 by itself).
+    double worst = 0, worst_exact = 0;
+    for (size_t k = 0; k < xs.size(); ++k) {
+        const double reference = std::log2(static_cast<double>(xs[k]));
+        worst = std::max(worst, std::fabs(fast[k] - reference) / std::max(1.0, std::fabs(reference)));
+        worst_exact = std::max(worst_exact, std::fabs(exact[k] - reference) / std::max(1.0, std::fabs(reference)));
+    }
+    std::printf("log2: max error (absolute below 1, relative above) fast %.3g (2^%.1f), exact %.3g (2^%.1f)\n",
+                worst, std::log2(worst), worst_exact, std::log2(worst_exact));
+    EXPECT_LT(worst, std::ldexp(1.0, -21));
+}
+
+TEST(FastTranscendentals, Log2SpecialValues) {
+    const auto fast = evaluate(Opcode::Log, {1.0f, 8.0f, -0.25f, 0.0f, -0.0f, kInf, kNaN, 0x1p-149f}, {},
+                               emu::Transcendentals::Fast);
+    EXPECT_EQ(fast[0], 0.0f);
+    EXPECT_EQ(fast[1], 3.0f);
+    EXPECT_EQ(fast[2], -2.0f);
+    EXPECT_EQ(fast[3], -kInf);
+    EXPECT_EQ(fast[4], -kInf);
+    EXPECT_EQ(fast[5], kInf);
+    EXPECT_TRUE(std::isnan(fast[6]));
+    EXPECT_EQ(fast[7], -149.0f);
+}
+
+TEST(FastTranscendentals, PowMeetsFifteenBits) {
+    std::vector<float> bases, exponents;
+    for (const float b : linear_sweep(0.01f, 100.0f, 2000))
+        for (const float e : linear_sweep(-8.0f, 8.0f, 161)) {
+            bases.push_back(b);
+            exponents.push_back(e);
+        }
+    const auto fast = evaluate(Opcode::Pow, bases, exponents, emu::Transcendentals::Fast);
+    const auto exact = evaluate(Opcode::Pow, bases, exponents, emu::Transcendentals::Exact);
+    double worst = 0, worst_exact = 0;
+    for (size_t k = 0; k < bases.size(); ++k) {
+        const double reference = std::pow(static_cast<double>(bases[k]), static_cast<double>(exponents[k]));
+        if (reference < 0x1p-126 || reference > 0x1p127) continue;
+        worst = std::max(worst, std::fabs(fast[k] - reference) / reference);
+        worst_exact = std::max(worst_exact, std::fabs(exact[k] - reference) / reference);
+    }
+    std::printf("pow: max relative error fast %.3g (2^%.1f), exact %.3g (2^%.1f)\n", worst, std::log2(worst),
+                worst_exact, std::log2(worst_exact));
+    EXPECT_LT(worst, std::ldexp(1.0, -15));
+}
+
+TEST(FastTranscendentals, PowSpecialValuesFollowThePolicy) {
+    // 0^0 = 1, 0^2 = 0, 0^-1 = inf, NaN^0 = 1, 1^NaN = 1, (-2)^3 = 8, 4^0.5 = 2
+    const auto fast = evaluate(Opcode::Pow, {0, 0, 0, kNaN, 1, -2, 4}, {0, 2, -1, 0, kNaN, 3, 0.5f},
+                               emu::Transcendentals::Fast);
+    EXPECT_EQ(fast[0], 1.0f);
+    EXPECT_TRUE(same_bits(fast[1], 0.0f));
+    EXPECT_EQ(fast[2], kInf);
+    EXPECT_EQ(fast[3], 1.0f);
+    EXPECT_EQ(fast[4], 1.0f);
+    EXPECT_NEAR(fast[5], 8.0f, 8.0f * 0x1p-15f);
+    EXPECT_NEAR(fast[6], 2.0f, 2.0f * 0x1p-15f);
+}
+
+TEST(FastTranscendentals, SinCosWithinTheDocumentedAbsoluteError) {
+    const auto xs = linear_sweep(-3.14159265f, 3.14159265f, 200000);
+    const auto cosine = evaluate(Opcode::SinCos, xs, {}, emu::Transcendentals::Fast, 0);
+    const auto sine = evaluate(Opcode::SinCos, xs, {}, emu::Transcendentals::Fast, 1);
+    const auto exact_sine = evaluate(Opcode::SinCos, xs, {}, emu::Transcendentals::Exact, 1);
+    double worst_sin = 0, worst_cos = 0, worst_exact = 0;
+    for (size_t k = 0; k < xs.size(); ++k) {
+        worst_sin = std::max(worst_sin, std::fabs(sine[k] - std::sin(static_cast<double>(xs[k]))));
+        worst_cos = std::max(worst_cos, std::fabs(cosine[k] - std::cos(static_cast<double>(xs[k]))));
+        worst_exact = std::max(worst_exact, std::fabs(exact_sine[k] - std::sin(static_cast<double>(xs[k]))));
+    }
+    std::printf("sincos: max absolute error fast sin %.3g, cos %.3g; exact sin %.3g\n", worst_sin, worst_cos, worst_exact);
+    EXPECT_LT(worst_sin, 0.002);
+    EXPECT_LT(worst_cos, 0.002);
+}
+
+TEST(FastTranscendentals, ExactModeIsTheLibrary) {
+    const auto exact = evaluate(Opcode::Exp, {0.5f}, {}, emu::Transcendentals::Exact);
+    EXPECT_EQ(exact[0], std::exp2(0.5f));
+}
+
+TEST(FastTranscendentals, ReferenceModeIgnoresFast) {
+    ProgramBuilder p(ShaderType::Vertex);
+    p.op(Opcode::Exp, oPos(), {c(0).swz("x")});
+    emu::LoweringOptions options;
+    options.precision.precision = emu::Precision::Fp64;
+    options.precision.transcendentals = emu::Transcendentals::Fast;
+    EXPECT_EQ(lower_or_fail(p.program(), {}, options).transcendentals(), emu::Transcendentals::Exact);
+}
+
+}  // namespace
+}  // namespace sm2::test
