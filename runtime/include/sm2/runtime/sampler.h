@@ -1,0 +1,103 @@
+// Sampler states (D3DSAMP_*, pipeline.md §17) and the TextureSampler: the one implementation of
+// the shader engine's emu::Sampler (texld, texldp, texldb), over up to 16 bound
+// (texture, sampler state) pairs. Rules, conventions and precision: docs/texturing.md.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+
+#include "sm2/emu/sampler.h"
+#include "sm2/runtime/formats.h"
+#include "sm2/runtime/texture.h"
+
+namespace sm2::runtime {
+
+// D3DSAMPLERSTATETYPE
+enum class SamplerStateType : uint32_t {
+    AddressU = 1, AddressV = 2, AddressW = 3, BorderColor = 4, MagFilter = 5, MinFilter = 6,
+    MipFilter = 7, MipMapLodBias = 8, MaxMipLevel = 9, MaxAnisotropy = 10, SrgbTexture = 11,
+    ElementIndex = 12, DMapOffset = 13,
+};
+
+// D3DTEXTUREADDRESS
+enum class TextureAddress : uint32_t { Wrap = 1, Mirror = 2, Clamp = 3, Border = 4, MirrorOnce = 5 };
+
+// D3DTEXTUREFILTERTYPE
+enum class TextureFilter : uint32_t {
+    None = 0, Point = 1, Linear = 2, Anisotropic = 3, PyramidalQuad = 6, GaussianQuad = 7,
+};
+
+struct SamplerState {
+    TextureAddress address_u = TextureAddress::Wrap;
+    TextureAddress address_v = TextureAddress::Wrap;
+    TextureAddress address_w = TextureAddress::Wrap;
+    uint32_t border_color = 0;                     // D3DCOLOR 0xAARRGGBB
+    TextureFilter mag_filter = TextureFilter::Point;
+    TextureFilter min_filter = TextureFilter::Point;
+    TextureFilter mip_filter = TextureFilter::None;
+    float mip_lod_bias = 0.0f;                     // stored as float bits in the DWORD
+    uint32_t max_mip_level = 0;
+    uint32_t max_anisotropy = 1;
+    bool srgb_texture = false;
+    uint32_t element_index = 0;
+    uint32_t dmap_offset = 0;
+
+    // SetSamplerState with the raw DWORD (floats as their bits). Any value is stored as given,
+    // like D3D9; the sampler interprets out-of-range values as documented in docs/texturing.md.
+    // Returns false (and changes nothing) for a state type that does not exist.
+    bool set(uint32_t type, uint32_t value);
+    // The raw DWORD of a state; nullopt for a state type that does not exist.
+    [[nodiscard]] std::optional<uint32_t> get(uint32_t type) const;
+
+    bool operator==(const SamplerState&) const = default;
+};
+
+// Bilinear/trilinear/anisotropic weights: 8-bit sub-texel fractions (hardware of the era, the
+// default), or exact float (the reference).
+enum class FilterPrecision : uint8_t { Fixed8, Exact };
+
+class TextureSampler final : public emu::Sampler {
+public:
+    static constexpr unsigned kStages = 16;
+
+    // The texture is not owned: it must outlive its binding. nullptr unbinds; an unbound stage
+    // samples (0, 0, 0, 1).
+    void set_texture(unsigned stage, const Texture* texture);
+    void set_state(unsigned stage, const SamplerState& state);
+    [[nodiscard]] const Texture* texture(unsigned stage) const { return stages_.at(stage).texture; }
+    [[nodiscard]] const SamplerState& state(unsigned stage) const { return stages_.at(stage).state; }
+    [[nodiscard]] SamplerState& state(unsigned stage) { return stages_.at(stage).state; }
+
+    void set_precision(FilterPrecision precision) { precision_ = precision; }
+    [[nodiscard]] FilterPrecision precision() const { return precision_; }
+
+    // emu::Sampler: one float4 per lane; LOD per 2x2 quad (see docs/texturing.md).
+    void sample(const emu::TextureRequest& request, std::array<emu::FloatLanes, 4>& texels) override;
+
+    // One lookup with explicit derivatives of the normalized coordinates (u, v, w) per pixel
+    // step in x and y (cube maps: derivatives of the direction), plus an extra LOD bias.
+    [[nodiscard]] Float4 sample_gradient(unsigned stage, const std::array<float, 3>& coord,
+                                         const std::array<float, 3>& ddx, const std::array<float, 3>& ddy,
+                                         float lod_bias = 0.0f) const;
+
+    // The level of detail lambda (before MAXMIPLEVEL clamping, with both biases) and anisotropy
+    // probe count the sampler would use for these texel-space derivatives; for tests and tools.
+    struct LodInfo {
+        float lambda = 0;       // log2(rho) + biases (NaN-free, clamped to [-64, 64])
+        unsigned probes = 1;    // anisotropic probes
+        bool magnify = true;
+    };
+    [[nodiscard]] LodInfo level_of_detail(unsigned stage, const std::array<float, 3>& ddx_texels,
+                                          const std::array<float, 3>& ddy_texels, float lod_bias = 0.0f) const;
+
+private:
+    struct Stage {
+        const Texture* texture = nullptr;
+        SamplerState state;
+    };
+    std::array<Stage, kStages> stages_{};
+    FilterPrecision precision_ = FilterPrecision::Fixed8;
+};
+
+}  // namespace sm2::runtime

@@ -1,0 +1,543 @@
+// The texture sampler: addressing, point/bilinear/trilinear/anisotropic filtering, level of
+// detail from the 2x2 quad, cube face selection, volume textures and sRGB reads
+// (pipeline.md §14; the conventions chosen where D3D9 leaves room are in docs/texturing.md).
+#include "sm2/runtime/sampler.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include "dxt.h"
+#include "format_layout.h"
+
+namespace sm2::runtime {
+
+// ---------------------------------------------------------------------------------------------
+// Sampler states
+
+bool SamplerState::set(uint32_t type, uint32_t value) {
+    switch (static_cast<SamplerStateType>(type)) {
+    case SamplerStateType::AddressU: address_u = static_cast<TextureAddress>(value); return true;
+    case SamplerStateType::AddressV: address_v = static_cast<TextureAddress>(value); return true;
+    case SamplerStateType::AddressW: address_w = static_cast<TextureAddress>(value); return true;
+    case SamplerStateType::BorderColor: border_color = value; return true;
+    case SamplerStateType::MagFilter: mag_filter = static_cast<TextureFilter>(value); return true;
+    case SamplerStateType::MinFilter: min_filter = static_cast<TextureFilter>(value); return true;
+    case SamplerStateType::MipFilter: mip_filter = static_cast<TextureFilter>(value); return true;
+    case SamplerStateType::MipMapLodBias: mip_lod_bias = std::bit_cast<float>(value); return true;
+    case SamplerStateType::MaxMipLevel: max_mip_level = value; return true;
+    case SamplerStateType::MaxAnisotropy: max_anisotropy = value; return true;
+    case SamplerStateType::SrgbTexture: srgb_texture = value != 0; return true;
+    case SamplerStateType::ElementIndex: element_index = value; return true;
+    case SamplerStateType::DMapOffset: dmap_offset = value; return true;
+    }
+    return false;
+}
+
+std::optional<uint32_t> SamplerState::get(uint32_t type) const {
+    switch (static_cast<SamplerStateType>(type)) {
+    case SamplerStateType::AddressU: return static_cast<uint32_t>(address_u);
+    case SamplerStateType::AddressV: return static_cast<uint32_t>(address_v);
+    case SamplerStateType::AddressW: return static_cast<uint32_t>(address_w);
+    case SamplerStateType::BorderColor: return border_color;
+    case SamplerStateType::MagFilter: return static_cast<uint32_t>(mag_filter);
+    case SamplerStateType::MinFilter: return static_cast<uint32_t>(min_filter);
+    case SamplerStateType::MipFilter: return static_cast<uint32_t>(mip_filter);
+    case SamplerStateType::MipMapLodBias: return std::bit_cast<uint32_t>(mip_lod_bias);
+    case SamplerStateType::MaxMipLevel: return max_mip_level;
+    case SamplerStateType::MaxAnisotropy: return max_anisotropy;
+    case SamplerStateType::SrgbTexture: return srgb_texture ? 1u : 0u;
+    case SamplerStateType::ElementIndex: return element_index;
+    case SamplerStateType::DMapOffset: return dmap_offset;
+    }
+    return std::nullopt;
+}
+
+void TextureSampler::set_texture(unsigned stage, const Texture* texture) { stages_.at(stage).texture = texture; }
+void TextureSampler::set_state(unsigned stage, const SamplerState& state) { stages_.at(stage).state = state; }
+
+namespace {
+
+// Texel-space coordinates are clamped to +-2^30 before any float -> integer conversion
+// (+-inf land there too; NaN coordinates are replaced by 0 before scaling).
+constexpr float kCoordLimit = 1073741824.0f;  // 2^30
+constexpr float kLambdaLimit = 64.0f;
+constexpr float kFixedScale = 256.0f;         // 8-bit sub-texel and LOD-fraction precision
+
+enum class Filter : uint8_t { Point, Linear };
+enum class Mip : uint8_t { None, Point, Linear };
+
+// Filters as the sampler uses them: NONE and unknown values act as POINT; ANISOTROPIC as a
+// magnification filter, PYRAMIDALQUAD and GAUSSIANQUAD act as LINEAR.
+Filter resolve_filter(TextureFilter f) {
+    switch (f) {
+    case TextureFilter::Linear: case TextureFilter::Anisotropic: case TextureFilter::PyramidalQuad:
+    case TextureFilter::GaussianQuad: return Filter::Linear;
+    default: return Filter::Point;
+    }
+}
+Mip resolve_mip(TextureFilter f) {
+    switch (f) {
+    case TextureFilter::Point: return Mip::Point;
+    case TextureFilter::Linear: case TextureFilter::Anisotropic: case TextureFilter::PyramidalQuad:
+    case TextureFilter::GaussianQuad: return Mip::Linear;
+    default: return Mip::None;
+    }
+}
+// Unknown address modes act as WRAP (the default).
+TextureAddress resolve_address(TextureAddress a) {
+    const auto v = static_cast<uint32_t>(a);
+    return v >= 1 && v <= 5 ? a : TextureAddress::Wrap;
+}
+
+float no_nan(float v) { return std::isnan(v) ? 0.0f : v; }
+
+struct Level {
+    const std::byte* data = nullptr;
+    size_t row = 0, slice = 0;
+    int64_t w = 1, h = 1, d = 1;
+};
+
+struct Context {
+    const Texture* texture = nullptr;
+    Format format = Format::Unknown;
+    TexelDecoder decode = nullptr;
+    unsigned bpp = 0;
+    bool dxt = false, srgb = false, cube = false, volume = false, fixed = true;
+    TextureAddress address[3]{};
+    Float4 border{};
+    Filter mag = Filter::Point, min = Filter::Point;
+    bool anisotropic = false;
+    Mip mip = Mip::None;
+    unsigned max_anisotropy = 1;
+    int first = 0, last = 0;
+    float bias = 0;
+    const std::array<float, 256>* srgb_table = nullptr;
+};
+
+Context make_context(const Texture& texture, const SamplerState& s, FilterPrecision precision) {
+    Context c;
+    c.texture = &texture;
+    c.format = texture.format();
+    c.dxt = dxt::is_dxt(c.format);
+    c.decode = c.dxt ? nullptr : texel_decoder(c.format);
+    const FormatInfo* info = format_info(c.format);
+    c.bpp = info != nullptr ? info->bytes : 0;
+    c.srgb = s.srgb_texture && info != nullptr && info->srgb;
+    c.srgb_table = &srgb_to_linear_table();
+    c.cube = texture.type() == TextureType::Cube;
+    c.volume = texture.type() == TextureType::Volume;
+    c.fixed = precision == FilterPrecision::Fixed8;
+    if (c.cube) {
+        // No filtering across cube face edges: every face clamps.
+        c.address[0] = c.address[1] = c.address[2] = TextureAddress::Clamp;
+    } else {
+        c.address[0] = resolve_address(s.address_u);
+        c.address[1] = resolve_address(s.address_v);
+        c.address[2] = resolve_address(s.address_w);
+    }
+    const uint32_t bc = s.border_color;
+    c.border = {static_cast<float>(bc >> 16 & 0xFFu) / 255.0f, static_cast<float>(bc >> 8 & 0xFFu) / 255.0f,
+                static_cast<float>(bc & 0xFFu) / 255.0f, static_cast<float>(bc >> 24) / 255.0f};
+    c.mag = resolve_filter(s.mag_filter);
+    c.min = resolve_filter(s.min_filter);
+    c.max_anisotropy = std::clamp<uint32_t>(s.max_anisotropy, 1u, 16u);
+    c.anisotropic = s.min_filter == TextureFilter::Anisotropic && c.max_anisotropy > 1;
+    c.mip = resolve_mip(s.mip_filter);
+    c.last = static_cast<int>(texture.levels()) - 1;
+    c.first = static_cast<int>(std::min<uint32_t>(s.max_mip_level, static_cast<uint32_t>(c.last)));
+    c.bias = std::clamp(no_nan(s.mip_lod_bias), -kLambdaLimit, kLambdaLimit);
+    return c;
+}
+
+Level level_view(const Context& c, int level, int face) {
+    const Surface& s = c.texture->surface(static_cast<uint32_t>(level), static_cast<uint32_t>(face));
+    return {s.bytes().data(), s.row_pitch(), s.slice_pitch(), s.width(), s.height(), s.depth()};
+}
+
+// Index mapping of §14.2; -1 = the border colour.
+int64_t address(TextureAddress mode, int64_t i, int64_t n) {
+    const bool pow2 = (n & (n - 1)) == 0;  // two's complement masks give the non-negative remainder
+    switch (mode) {
+    case TextureAddress::Mirror: {
+        int64_t j = pow2 ? i & (2 * n - 1) : i % (2 * n);
+        if (j < 0) j += 2 * n;
+        return j >= n ? 2 * n - 1 - j : j;
+    }
+    case TextureAddress::Clamp: return i < 0 ? 0 : i >= n ? n - 1 : i;
+    case TextureAddress::Border: return i < 0 || i >= n ? -1 : i;
+    case TextureAddress::MirrorOnce: {
+        const int64_t j = i < 0 ? -1 - i : i;
+        return j >= n ? n - 1 : j;
+    }
+    default: {  // Wrap
+        if (pow2) return i & (n - 1);
+        int64_t j = i % n;
+        return j < 0 ? j + n : j;
+    }
+    }
+}
+
+// F = Format::Unknown: any format (DXTn or the decoder chosen at run time); otherwise the
+// decoder of F inlined (the common formats, see lookup_any).
+template <Format F>
+Float4 fetch(const Context& c, const Level& l, int64_t x, int64_t y, int64_t z) {
+    if (x < 0 || y < 0 || z < 0) return c.border;
+    Float4 t;
+    const std::byte* slice = l.data + static_cast<size_t>(z) * l.slice;
+    if constexpr (dxt::is_dxt(F)) {
+        const std::byte* block = slice + static_cast<size_t>(y / 4) * l.row + static_cast<size_t>(x / 4) * dxt::block_bytes(F);
+        const dxt::Rgba8 p = dxt::decode_texel(F, block, static_cast<unsigned>(x % 4), static_cast<unsigned>(y % 4));
+        if (c.srgb) {
+            const auto& lut = *c.srgb_table;
+            return {lut[p.r], lut[p.g], lut[p.b], static_cast<float>(p.a) / 255.0f};
+        }
+        return dxt::to_float(p);
+    } else if constexpr (F != Format::Unknown) {
+        t = layout::decode<F>(slice + static_cast<size_t>(y) * l.row + static_cast<size_t>(x) * c.bpp);
+        if (c.srgb) {
+            const auto& lut = *c.srgb_table;
+            for (unsigned i = 0; i < 3; ++i) t[i] = lut[static_cast<unsigned>(std::clamp(t[i], 0.0f, 1.0f) * 255.0f + 0.5f)];
+        }
+        return t;
+    }
+    if (c.dxt) {
+        const std::byte* block = slice + static_cast<size_t>(y / 4) * l.row +
+                                 static_cast<size_t>(x / 4) * dxt::block_bytes(c.format);
+        const dxt::Rgba8 p = dxt::decode_texel(c.format, block, static_cast<unsigned>(x % 4), static_cast<unsigned>(y % 4));
+        if (c.srgb) {
+            const auto& lut = *c.srgb_table;
+            return {lut[p.r], lut[p.g], lut[p.b], static_cast<float>(p.a) / 255.0f};
+        }
+        return dxt::to_float(p);
+    }
+    t = c.decode(slice + static_cast<size_t>(y) * l.row + static_cast<size_t>(x) * c.bpp);
+    if (c.srgb) {
+        const auto& lut = *c.srgb_table;
+        // sRGB-capable formats are all 8-bit UNORM: t[i] is k/255, never NaN
+        for (unsigned i = 0; i < 3; ++i) t[i] = lut[static_cast<unsigned>(std::clamp(t[i], 0.0f, 1.0f) * 255.0f + 0.5f)];
+    }
+    return t;
+}
+
+// Texel-space coordinate u * n, NaN-free and within +-2^30.
+float texel_space(float u, int64_t n) {
+    return std::clamp(no_nan(u) * static_cast<float>(n), -kCoordLimit, kCoordLimit);
+}
+
+struct Taps {
+    int64_t i0, i1;  // addressed indices (-1 = border)
+    float a;         // weight of i1
+};
+
+Taps linear_taps(const Context& c, float t, int64_t n, TextureAddress mode) {
+    const float x = t - 0.5f;
+    int64_t i;
+    float a;
+    if (c.fixed) {
+        const auto fx = static_cast<int64_t>(std::floor(x * kFixedScale));
+        i = fx >> 8;
+        a = static_cast<float>(fx & 255) / kFixedScale;
+    } else {
+        const float f = std::floor(x);
+        i = static_cast<int64_t>(f);
+        a = x - f;
+    }
+    return {address(mode, i, n), address(mode, i + 1, n), a};
+}
+
+void accumulate(Float4& sum, const Float4& t, float w) {
+    for (unsigned k = 0; k < 4; ++k) sum[k] += w * t[k];
+}
+
+// One probe on one level.
+template <Format F>
+Float4 filter_level(const Context& c, const Level& l, Filter f, float u, float v, float w) {
+    const float tu = texel_space(u, l.w), tv = texel_space(v, l.h);
+    if (f == Filter::Point) {
+        const int64_t x = address(c.address[0], static_cast<int64_t>(std::floor(tu)), l.w);
+        const int64_t y = address(c.address[1], static_cast<int64_t>(std::floor(tv)), l.h);
+        const int64_t z = c.volume ? address(c.address[2], static_cast<int64_t>(std::floor(texel_space(w, l.d))), l.d) : 0;
+        return fetch<F>(c, l, x, y, z);
+    }
+    const Taps tx = linear_taps(c, tu, l.w, c.address[0]);
+    const Taps ty = linear_taps(c, tv, l.h, c.address[1]);
+    // Taps summed in a fixed order: ((t00 w00 + t10 w10) + t01 w01) + t11 w11 [+ the next plane].
+    auto plane = [&](int64_t z, float wz) {
+        const Float4 t00 = fetch<F>(c, l, tx.i0, ty.i0, z), t10 = fetch<F>(c, l, tx.i1, ty.i0, z);
+        const Float4 t01 = fetch<F>(c, l, tx.i0, ty.i1, z), t11 = fetch<F>(c, l, tx.i1, ty.i1, z);
+        const float w00 = (1 - tx.a) * (1 - ty.a) * wz, w10 = tx.a * (1 - ty.a) * wz;
+        const float w01 = (1 - tx.a) * ty.a * wz, w11 = tx.a * ty.a * wz;
+        Float4 r;
+        for (unsigned k = 0; k < 4; ++k) r[k] = t00[k] * w00 + t10[k] * w10 + t01[k] * w01 + t11[k] * w11;
+        return r;
+    };
+    if (!c.volume) return plane(0, 1.0f);
+    const Taps tz = linear_taps(c, texel_space(w, l.d), l.d, c.address[2]);
+    Float4 r = plane(tz.i0, 1 - tz.a);
+    const Float4 r1 = plane(tz.i1, tz.a);
+    for (unsigned k = 0; k < 4; ++k) r[k] += r1[k];
+    return r;
+}
+
+struct Lod {
+    bool magnify = true;
+    float lambda = 0;     // after anisotropy's division by the probe count
+    unsigned probes = 1;
+    int major_axis = 0;   // 0: the x derivative is the major axis, 1: y
+};
+
+float log2_lod(double rho, bool fixed) {
+    // log2 in double, one rounding to float; 8 fractional bits in fixed mode.
+    double l = rho > 0 ? std::log2(rho) : -static_cast<double>(kLambdaLimit);
+    if (!(l > -kLambdaLimit)) l = -kLambdaLimit;  // also catches NaN
+    if (l > kLambdaLimit) l = kLambdaLimit;
+    if (fixed) l = std::floor(l * kFixedScale) / kFixedScale;
+    return static_cast<float>(l);
+}
+
+double length(const std::array<float, 3>& d) {
+    const double x = d[0], y = d[1], z = d[2];
+    const double len = std::sqrt(x * x + y * y + z * z);
+    return std::isnan(len) ? 0.0 : len;  // NaN derivatives count as 0; inf stays inf
+}
+
+// LOD for texel-space derivative vectors; `bias` = texldb's bias (MIPMAPLODBIAS is added here).
+Lod compute_lod(const Context& c, double lx, double ly, float bias) {
+    Lod lod;
+    const double major = std::max(lx, ly), minor = std::min(lx, ly);
+    lod.major_axis = ly > lx ? 1 : 0;
+    const float total_bias = c.bias + std::clamp(no_nan(bias), -kLambdaLimit, kLambdaLimit);
+    const float lambda = std::clamp(log2_lod(major, c.fixed) + total_bias, -kLambdaLimit, kLambdaLimit);
+    lod.lambda = lambda;
+    lod.magnify = !(lambda > 0.0f);
+    if (!lod.magnify && c.anisotropic) {
+        const double ratio = minor > 0 ? major / minor : INFINITY;
+        // !(ratio < max) also catches inf / inf = NaN (both derivatives infinite)
+        const unsigned n = !(ratio < c.max_anisotropy) ? c.max_anisotropy
+                                                       : static_cast<unsigned>(std::ceil(ratio));
+        lod.probes = std::max(1u, n);
+        lod.lambda = std::clamp(log2_lod(major / lod.probes, c.fixed) + total_bias, -kLambdaLimit, kLambdaLimit);
+    }
+    return lod;
+}
+
+struct Dir {
+    float u = 0.5f, v = 0.5f;
+    int face = 4;
+};
+
+// Face coordinates of §14.4 with `face` forced (the quad's face for derivatives); sc/|ma|.
+Dir project_to_face(float x, float y, float z, int face) {
+    float sc = 0, tc = 0, ma = 0;
+    switch (face) {
+    case 0: sc = -z; tc = -y; ma = x; break;
+    case 1: sc = z; tc = -y; ma = x; break;
+    case 2: sc = x; tc = z; ma = y; break;
+    case 3: sc = x; tc = -z; ma = y; break;
+    case 4: sc = x; tc = -y; ma = z; break;
+    default: sc = -x; tc = -y; ma = z; break;
+    }
+    const float m = std::fabs(ma);
+    Dir d;
+    d.face = face;
+    if (m == 0 || std::isnan(m)) return d;  // centre of the face
+    d.u = (sc / m + 1.0f) * 0.5f;
+    d.v = (tc / m + 1.0f) * 0.5f;
+    return d;
+}
+
+// Direction -> face and (u, v). NaN components count as 0; a direction with an infinite
+// component keeps only its infinite components (as +-1); the zero vector gives +Z's centre.
+Dir cube_direction(float x, float y, float z) {
+    x = no_nan(x);
+    y = no_nan(y);
+    z = no_nan(z);
+    if (std::isinf(x) || std::isinf(y) || std::isinf(z)) {
+        auto unit = [](float a) { return std::isinf(a) ? std::copysign(1.0f, a) : 0.0f; };
+        x = unit(x);
+        y = unit(y);
+        z = unit(z);
+    }
+    const float ax = std::fabs(x), ay = std::fabs(y), az = std::fabs(z);
+    int face;
+    if (az >= ay && az >= ax) face = std::signbit(z) ? 5 : 4;  // ties: z over y over x
+    else if (ay >= ax) face = std::signbit(y) ? 3 : 2;
+    else face = std::signbit(x) ? 1 : 0;
+    return project_to_face(x, y, z, face);
+}
+
+// A whole lookup at normalized (u, v, w) on `face` with a computed LOD; `axis` is the
+// anisotropic major axis in normalized coordinates.
+template <Format F>
+Float4 lookup(const Context& c, float u, float v, float w, int face, const Lod& lod, const std::array<float, 3>& axis) {
+    if (lod.magnify) return filter_level<F>(c, level_view(c, c.first, face), c.mag, u, v, w);
+    const Filter f = c.anisotropic ? Filter::Linear : c.min;
+    int l0 = c.first, l1 = c.first;
+    float frac = 0;
+    if (c.mip != Mip::None) {
+        const float d = std::clamp(lod.lambda, static_cast<float>(c.first), static_cast<float>(c.last));
+        if (c.mip == Mip::Point) {
+            l0 = l1 = std::min(c.last, static_cast<int>(std::floor(d + 0.5f)));
+        } else {
+            l0 = static_cast<int>(std::floor(d));
+            l1 = std::min(l0 + 1, c.last);
+            frac = d - static_cast<float>(l0);
+            if (c.fixed) frac = std::floor(frac * kFixedScale) / kFixedScale;
+        }
+    }
+    const Level a = level_view(c, l0, face);
+    auto probe = [&](float pu, float pv, float pw) {
+        Float4 r = filter_level<F>(c, a, f, pu, pv, pw);
+        if (frac > 0) {
+            const Float4 b = filter_level<F>(c, level_view(c, l1, face), f, pu, pv, pw);
+            for (unsigned k = 0; k < 4; ++k) r[k] = (1 - frac) * r[k] + frac * b[k];
+        }
+        return r;
+    };
+    if (lod.probes <= 1) return probe(u, v, w);
+    Float4 sum{0, 0, 0, 0};
+    const float n = static_cast<float>(lod.probes);
+    for (unsigned i = 0; i < lod.probes; ++i) {
+        const float t = (static_cast<float>(i) + 0.5f) / n - 0.5f;
+        accumulate(sum, probe(u + t * axis[0], v + t * axis[1], w + t * axis[2]), 1.0f);
+    }
+    for (float& s : sum) s /= n;
+    return sum;
+}
+
+// The same lookup with the texel decoder inlined for the common formats (identical results).
+Float4 lookup_any(const Context& c, float u, float v, float w, int face, const Lod& lod, const std::array<float, 3>& axis) {
+    switch (c.format) {
+#define SM2_INLINE_FORMAT(f) \
+    case Format::f: return lookup<Format::f>(c, u, v, w, face, lod, axis);
+    SM2_INLINE_FORMAT(A8R8G8B8)
+    SM2_INLINE_FORMAT(X8R8G8B8)
+    SM2_INLINE_FORMAT(A8B8G8R8)
+    SM2_INLINE_FORMAT(R5G6B5)
+    SM2_INLINE_FORMAT(L8)
+    SM2_INLINE_FORMAT(A8L8)
+    SM2_INLINE_FORMAT(R16F)
+    SM2_INLINE_FORMAT(G16R16F)
+    SM2_INLINE_FORMAT(A16B16G16R16F)
+    SM2_INLINE_FORMAT(R32F)
+    SM2_INLINE_FORMAT(G32R32F)
+    SM2_INLINE_FORMAT(A32B32G32R32F)
+    SM2_INLINE_FORMAT(DXT1)
+    SM2_INLINE_FORMAT(DXT2)
+    SM2_INLINE_FORMAT(DXT3)
+    SM2_INLINE_FORMAT(DXT4)
+    SM2_INLINE_FORMAT(DXT5)
+#undef SM2_INLINE_FORMAT
+    default: return lookup<Format::Unknown>(c, u, v, w, face, lod, axis);
+    }
+}
+
+}  // namespace
+
+TextureSampler::LodInfo TextureSampler::level_of_detail(unsigned stage, const std::array<float, 3>& ddx_texels,
+                                                        const std::array<float, 3>& ddy_texels, float lod_bias) const {
+    const Stage& s = stages_.at(stage);
+    if (s.texture == nullptr || s.texture->levels() == 0) return {};
+    const Context c = make_context(*s.texture, s.state, precision_);
+    const Lod lod = compute_lod(c, length(ddx_texels), length(ddy_texels), lod_bias);
+    return {lod.lambda, lod.probes, lod.magnify};
+}
+
+namespace {
+
+// Scales normalized derivatives to level-0 texels.
+std::array<float, 3> to_texels(const Context& c, const std::array<float, 3>& d) {
+    const Texture& t = *c.texture;
+    return {d[0] * static_cast<float>(t.width()), d[1] * static_cast<float>(t.height()),
+            c.volume ? d[2] * static_cast<float>(t.depth()) : 0.0f};
+}
+
+std::array<float, 3> diff(const std::array<float, 3>& a, const std::array<float, 3>& b) {
+    return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+
+}  // namespace
+
+Float4 TextureSampler::sample_gradient(unsigned stage, const std::array<float, 3>& coord, const std::array<float, 3>& ddx,
+                                       const std::array<float, 3>& ddy, float lod_bias) const {
+    const Stage& s = stages_.at(stage);
+    if (s.texture == nullptr || s.texture->levels() == 0) return {0, 0, 0, 1};
+    const Context c = make_context(*s.texture, s.state, precision_);
+    std::array<float, 3> p = coord, px = ddx, py = ddy;
+    int face = 0;
+    if (c.cube) {
+        const Dir d = cube_direction(coord[0], coord[1], coord[2]);
+        face = d.face;
+        const Dir dx = project_to_face(coord[0] + ddx[0], coord[1] + ddx[1], coord[2] + ddx[2], face);
+        const Dir dy = project_to_face(coord[0] + ddy[0], coord[1] + ddy[1], coord[2] + ddy[2], face);
+        p = {d.u, d.v, 0};
+        px = {dx.u - d.u, dx.v - d.v, 0};
+        py = {dy.u - d.u, dy.v - d.v, 0};
+    }
+    const Lod lod = compute_lod(c, length(to_texels(c, px)), length(to_texels(c, py)), lod_bias);
+    return lookup_any(c, p[0], p[1], p[2], face, lod, lod.major_axis == 0 ? px : py);
+}
+
+void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::FloatLanes, 4>& texels) {
+    const unsigned quads = std::min(request.quad_count, emu::kBatchQuads);
+    for (unsigned k = 0; k < 4; ++k) texels[k].fill(k == 3 ? 1.0f : 0.0f);
+    if (request.sampler >= kStages || request.coordinates == nullptr) return;
+    const Stage& s = stages_[request.sampler];
+    if (s.texture == nullptr || s.texture->levels() == 0) return;  // unbound or empty: (0, 0, 0, 1)
+    const Context c = make_context(*s.texture, s.state, precision_);
+    const auto& in = *request.coordinates;
+
+    for (unsigned q = 0; q < quads; ++q) {
+        std::array<std::array<float, 3>, 4> p;  // normalized (u, v, w) per lane
+        std::array<float, 4> bias{};
+        std::array<int, 4> face{};
+        std::array<std::array<float, 3>, 4> raw;
+        for (unsigned i = 0; i < 4; ++i) {
+            const unsigned l = 4 * q + i;
+            float x = in[0][l], y = in[1][l], z = in[2][l];
+            const float w = in[3][l];
+            if (request.variant == emu::TextureVariant::Projected) {
+                x /= w;  // IEEE: w = 0 gives +-inf or NaN, handled below
+                y /= w;
+                z /= w;
+            } else if (request.variant == emu::TextureVariant::Bias) {
+                bias[i] = w;
+            }
+            raw[i] = {x, y, z};
+            if (c.cube) {
+                const Dir d = cube_direction(x, y, z);
+                p[i] = {d.u, d.v, 0};
+                face[i] = d.face;
+            } else {
+                p[i] = {x, y, c.volume ? z : 0.0f};
+            }
+        }
+        // Coarse derivatives, one LOD per quad: d/dx = TR - TL, d/dy = BL - TL. Cube maps take
+        // all four lanes' coordinates on the top-left lane's face.
+        std::array<float, 3> dx, dy;
+        if (c.cube) {
+            const Dir tl = project_to_face(raw[0][0], raw[0][1], raw[0][2], face[0]);
+            const Dir tr = project_to_face(raw[1][0], raw[1][1], raw[1][2], face[0]);
+            const Dir bl = project_to_face(raw[2][0], raw[2][1], raw[2][2], face[0]);
+            dx = {tr.u - tl.u, tr.v - tl.v, 0};
+            dy = {bl.u - tl.u, bl.v - tl.v, 0};
+        } else {
+            dx = diff(p[1], p[0]);
+            dy = diff(p[2], p[0]);
+        }
+        const double lx = length(to_texels(c, dx)), ly = length(to_texels(c, dy));
+        // The LOD changes nothing when both filters agree and there are no mips to choose.
+        const bool lod_matters = c.mip != Mip::None || c.mag != c.min || c.anisotropic;
+        const Lod quad_lod = lod_matters ? compute_lod(c, lx, ly, 0.0f) : Lod{};
+        for (unsigned i = 0; i < 4; ++i) {
+            const Lod lod = bias[i] == 0.0f || !lod_matters ? quad_lod : compute_lod(c, lx, ly, bias[i]);
+            const Float4 r = lookup_any(c, p[i][0], p[i][1], p[i][2], face[i], lod, lod.major_axis == 0 ? dx : dy);
+            for (unsigned k = 0; k < 4; ++k) texels[k][4 * q + i] = r[k];
+        }
+    }
+}
+
+}  // namespace sm2::runtime
