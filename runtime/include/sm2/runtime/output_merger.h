@@ -1,0 +1,77 @@
+// The output merger (pipeline.md §7, §10, §12, §13): fog, alpha test, the depth/stencil stage
+// (depth_stencil.h), blending, sRGB write, colour write masks and stores to up to four render
+// targets, in D3D9's order:
+//   fog on oC0.rgb -> (scissor: done by the rasterizer) -> alpha test on oC0.a ->
+//   depth bias (in the interpolated depth) -> stencil test, depth test, stencil update ->
+//   blending per target -> sRGB (target 0) -> write mask -> store.
+// Pixels killed by texkill (batch.killed) or not covered write nothing.
+//
+// Blending is done in float. For fixed-point targets the shader colour and the result are
+// clamped to [0, 1]; float targets keep the range. Destination colours are the stored texels as
+// a sampler reads them (a format without alpha reads alpha 1). sRGB write blends in linear
+// space: the stored value is converted to linear, blended, and converted back.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "sm2/emu/batch.h"
+#include "sm2/runtime/depth_stencil.h"
+#include "sm2/runtime/interpolation.h"
+#include "sm2/runtime/render_state.h"
+#include "sm2/runtime/surface.h"
+
+namespace sm2::runtime {
+
+struct BlendState {
+    bool enable = false;  // ALPHABLENDENABLE
+    Blend src = Blend::One, dst = Blend::Zero;
+    BlendOp op = BlendOp::Add;
+    Blend src_alpha = Blend::One, dst_alpha = Blend::Zero;  // SEPARATEALPHABLENDENABLE, or
+    BlendOp op_alpha = BlendOp::Add;                        // copies of the colour ones
+    Vec4 factor{1.0f, 1.0f, 1.0f, 1.0f};                   // BLENDFACTOR / 255
+};
+
+struct OutputMergerState {
+    bool fog_enable = false;
+    FogMode fog_table_mode = FogMode::None;
+    float fog_start = 0.0f, fog_end = 1.0f, fog_density = 1.0f;
+    Vec4 fog_color{};
+    bool alpha_test = false;
+    CompareFunc alpha_func = CompareFunc::Always;
+    float alpha_ref = 0.0f;  // (ALPHAREF & 0xFF) / 255
+    DepthStencilState depth_stencil{};
+    BlendState blend{};
+    std::array<uint32_t, kMaxRenderTargets> write_mask{0xF, 0xF, 0xF, 0xF};
+    bool srgb_write = false;
+};
+[[nodiscard]] OutputMergerState output_merger_state(const RenderState& state);
+
+struct RenderTargets {
+    std::array<Surface*, kMaxRenderTargets> color{};  // null: no target in that slot
+    DepthStencilSurface* depth_stencil = nullptr;
+};
+
+// §13 with a vertex shader: table fog (LINEAR/EXP/EXP2 of the pixel depth) when FOGTABLEMODE is
+// not NONE, else the interpolated oFog.x; clamped to [0, 1]. 1 = no fog.
+[[nodiscard]] float fog_factor(const OutputMergerState& state, float vertex_fog, float depth);
+// `alpha FUNC ref` with alpha = oC0.a clamped to [0, 1] (NaN fails every test but ALWAYS).
+[[nodiscard]] bool alpha_test_passes(const OutputMergerState& state, float alpha);
+// One blend (§12): src = shader colour, dst = stored colour. `fixed_point` clamps src and the
+// result to [0, 1].
+[[nodiscard]] Vec4 blend(const BlendState& state, const Vec4& src, const Vec4& dst, bool fixed_point);
+// Whether a render-target format stores floats (no clamping).
+[[nodiscard]] bool is_float_target(Format format);
+
+struct MergeInput {
+    const emu::Batch* batch = nullptr;     // after the pixel shader: oC0..3, oDepth
+    const PixelLanes* lanes = nullptr;     // positions, depth, fog, facing
+    emu::LaneMask live = 0;                // lanes to process (batch.killed is removed here)
+    uint8_t color_outputs = 1;             // oC# the shader writes (bit n)
+    bool shader_depth = false;             // oDepth written: replaces the biased depth
+    bool depth_stencil_done = false;       // an early depth/stencil test already ran on `live`
+};
+// Runs every per-pixel operation for the live lanes; returns the lanes that wrote colour.
+emu::LaneMask merge(const OutputMergerState& state, RenderTargets& targets, const MergeInput& input);
+
+}  // namespace sm2::runtime

@@ -1,0 +1,235 @@
+// The depth/stencil stage (pipeline.md §9, §11): quantization per depth format, every compare
+// function, every stencil operation, masks, two-sided stencil, write enables.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <limits>
+
+#include "sm2/runtime/depth_stencil.h"
+
+namespace sm2::runtime {
+namespace {
+
+using Lanes = std::array<int32_t, emu::kBatchLanes>;
+using Depths = std::array<float, emu::kBatchLanes>;
+
+DepthStencilSurface make(Format f, uint32_t w = 4, uint32_t h = 4) {
+    auto r = DepthStencilSurface::create(f, w, h);
+    EXPECT_TRUE(r.surface) << r.error;
+    return std::move(*r.surface);
+}
+
+TEST(DepthStencil, QuantizationPerFormat) {
+    const DepthFormatInfo d16{16, 0, false}, d24{24, 8, false}, d32{32, 0, false}, f32{32, 0, true};
+    // round(z * (2^n - 1)), halves up:
+    EXPECT_EQ(quantize_depth(d16, 0.5f), 32768u);       // 32767.5 -> 32768
+    EXPECT_EQ(quantize_depth(d16, 0.25f), 16384u);      // 16383.75 -> 16384
+    EXPECT_EQ(quantize_depth(d16, 1.0f / 3.0f), 21845u);  // 21845.00065 (float 1/3 is 0.33333334)
+    EXPECT_EQ(quantize_depth(d16, 1.0f), 65535u);
+    EXPECT_EQ(quantize_depth(d24, 0.5f), 8388608u);     // 8388607.5 -> 8388608
+    EXPECT_EQ(quantize_depth(d24, 1.0f), 16777215u);
+    EXPECT_EQ(quantize_depth(d32, 0.5f), 2147483648u);  // 2147483647.5 -> 2^31
+    EXPECT_EQ(quantize_depth(d32, 1.0f), 4294967295u);
+    // 2^-30 * (2^32 - 1) = 4 - 2^-30 -> 4 (needs more than float or double precision).
+    EXPECT_EQ(quantize_depth(d32, 1.0f / 1073741824.0f), 4u);
+    // 2^-33 * (2^32 - 1) = 0.5 - 2^-33 -> 0.
+    EXPECT_EQ(quantize_depth(d32, 1.0f / 8589934592.0f), 0u);
+    // Clamped to [0, 1]; NaN stores 0.
+    EXPECT_EQ(quantize_depth(d16, -0.5f), 0u);
+    EXPECT_EQ(quantize_depth(d16, 2.0f), 65535u);
+    EXPECT_EQ(quantize_depth(d16, std::numeric_limits<float>::quiet_NaN()), 0u);
+    // Float depth keeps the value.
+    EXPECT_EQ(quantize_depth(f32, 0.1f), std::bit_cast<uint32_t>(0.1f));
+    EXPECT_EQ(dequantize_depth(f32, std::bit_cast<uint32_t>(0.1f)), 0.1f);
+    EXPECT_EQ(dequantize_depth(d16, 65535u), 1.0f);
+}
+
+TEST(DepthStencil, FormatsAndCreation) {
+    EXPECT_EQ(depth_format_info(Format::D24S8)->stencil_bits, 8);
+    EXPECT_EQ(depth_format_info(Format::D24X8)->stencil_bits, 0);
+    EXPECT_EQ(depth_format_info(Format::D16)->depth_bits, 16);
+    EXPECT_EQ(depth_format_info(Format::D32)->depth_bits, 32);
+    EXPECT_TRUE(depth_format_info(Format::D32F_LOCKABLE)->float_depth);
+    EXPECT_FALSE(depth_format_info(Format::A8R8G8B8));
+    EXPECT_FALSE(DepthStencilSurface::create(Format::A8R8G8B8, 4, 4).surface);
+    EXPECT_FALSE(DepthStencilSurface::create(Format::D16, 0, 4).surface);
+    EXPECT_FALSE(DepthStencilSurface::create(Format::D16, 4, 100000).surface);
+    auto s = make(Format::D24S8);
+    s.clear(PixelRect{1, 1, 10, 10}, true, 0.5f, true, 0x1FF);  // clipped; stencil to 8 bits
+    EXPECT_EQ(s.stored_depth(0, 0), 0u);
+    EXPECT_EQ(s.stored_depth(3, 3), 8388608u);
+    EXPECT_EQ(s.stencil(3, 3), 0xFFu);
+}
+
+// One pixel at (1, 2) in lane 0.
+emu::LaneMask test_one(const DepthStencilState& st, DepthStencilSurface& s, float z, bool cw = true) {
+    Lanes x{}, y{};
+    Depths d{};
+    x[0] = 1;
+    y[0] = 2;
+    d[0] = z;
+    return depth_stencil_test(st, &s, x, y, d, 1u, cw);
+}
+
+TEST(DepthStencil, EveryDepthCompareFunction) {
+    // Stored 0.5 (D16: 32768). Incoming 0.25 (16384), 0.5 (32768), 0.75 (49151.25 -> 49151).
+    struct Row { CompareFunc f; bool less, equal, greater; };
+    const Row rows[] = {
+        {CompareFunc::Never, false, false, false},   {CompareFunc::Less, true, false, false},
+        {CompareFunc::Equal, false, true, false},    {CompareFunc::LessEqual, true, true, false},
+        {CompareFunc::Greater, false, false, true},  {CompareFunc::NotEqual, true, false, true},
+        {CompareFunc::GreaterEqual, false, true, true}, {CompareFunc::Always, true, true, true},
+    };
+    for (const Row& r : rows) {
+        DepthStencilState st;
+        st.depth_enable = true;
+        st.depth_write = false;
+        st.depth_func = r.f;
+        auto s = make(Format::D16);
+        s.set_depth(1, 2, 0.5f);
+        EXPECT_EQ(test_one(st, s, 0.25f) == 1u, r.less) << static_cast<int>(r.f);
+        EXPECT_EQ(test_one(st, s, 0.5f) == 1u, r.equal) << static_cast<int>(r.f);
+        EXPECT_EQ(test_one(st, s, 0.75f) == 1u, r.greater) << static_cast<int>(r.f);
+        EXPECT_EQ(s.stored_depth(1, 2), 32768u);  // ZWRITEENABLE FALSE: never written
+    }
+}
+
+TEST(DepthStencil, ComparesInStoredPrecision) {
+    // D16: 0.5 and 0.500005 both store 32768 (32767.5 and 32767.83 round to it), so EQUAL passes.
+    DepthStencilState st;
+    st.depth_enable = true;
+    st.depth_func = CompareFunc::Equal;
+    auto s = make(Format::D16);
+    s.set_depth(1, 2, 0.5f);
+    EXPECT_EQ(test_one(st, s, 0.500005f), 1u);
+    // D32F compares floats: the two differ.
+    auto f = make(Format::D32F_LOCKABLE);
+    f.set_depth(1, 2, 0.5f);
+    EXPECT_EQ(test_one(st, f, 0.500005f), 0u);
+}
+
+TEST(DepthStencil, DepthWriteAndDisabled) {
+    DepthStencilState st;
+    st.depth_enable = true;  // LESSEQUAL, write on
+    auto s = make(Format::D24X8);
+    s.set_depth(1, 2, 1.0f);
+    EXPECT_EQ(test_one(st, s, 0.5f), 1u);
+    EXPECT_EQ(s.stored_depth(1, 2), 8388608u);
+    EXPECT_EQ(test_one(st, s, 0.75f), 0u);  // fails, nothing written
+    EXPECT_EQ(s.stored_depth(1, 2), 8388608u);
+    EXPECT_EQ(test_one(st, s, 2.0f), 0u);   // clamped to 1: 1 <= 0.5 fails
+    st.depth_enable = false;                // disabled: passes, writes nothing
+    EXPECT_EQ(test_one(st, s, 0.9f), 1u);
+    EXPECT_EQ(s.stored_depth(1, 2), 8388608u);
+    // No surface: passes. Lanes outside the surface: fail.
+    Lanes x{}, y{};
+    Depths d{};
+    x[1] = 4;
+    st.depth_enable = true;
+    EXPECT_EQ(depth_stencil_test(st, nullptr, x, y, d, 3u, true), 3u);
+    EXPECT_EQ(depth_stencil_test(st, &s, x, y, d, 3u, true), 1u);
+}
+
+TEST(DepthStencil, EveryStencilOp) {
+    // 8-bit stencil (max 255), REF 9: from stored 5 and from the extremes 0 and 255.
+    struct Row { StencilOp op; uint32_t from5, from0, from255; };
+    const Row rows[] = {
+        {StencilOp::Keep, 5, 0, 255},    {StencilOp::Zero, 0, 0, 0},
+        {StencilOp::Replace, 9, 9, 9},   {StencilOp::IncrSat, 6, 1, 255},
+        {StencilOp::DecrSat, 4, 0, 254}, {StencilOp::Invert, 250, 255, 0},
+        {StencilOp::Incr, 6, 1, 0},      {StencilOp::Decr, 4, 255, 254},
+    };
+    for (const Row& r : rows) {
+        EXPECT_EQ(apply_stencil_op(r.op, 5, 9, 255), r.from5) << static_cast<int>(r.op);
+        EXPECT_EQ(apply_stencil_op(r.op, 0, 9, 255), r.from0) << static_cast<int>(r.op);
+        EXPECT_EQ(apply_stencil_op(r.op, 255, 9, 255), r.from255) << static_cast<int>(r.op);
+        // Through the stage: STENCILPASS = op, stencil ALWAYS, depth off.
+        DepthStencilState st;
+        st.stencil_enable = true;
+        st.front.pass = r.op;
+        st.ref = 9;
+        auto s = make(Format::D24S8);
+        s.set_stencil(1, 2, 5);
+        EXPECT_EQ(test_one(st, s, 0.5f), 1u);
+        EXPECT_EQ(s.stencil(1, 2), r.from5);
+    }
+}
+
+TEST(DepthStencil, FailZFailPassSelectTheOp) {
+    DepthStencilState st;
+    st.stencil_enable = true;
+    st.depth_enable = true;
+    st.depth_func = CompareFunc::Less;
+    st.front = {StencilOp::Replace, StencilOp::Incr, StencilOp::Zero, CompareFunc::Equal};
+    st.ref = 7;
+    auto s = make(Format::D24S8);
+    s.set_depth(1, 2, 0.5f);
+    s.set_stencil(1, 2, 3);
+    EXPECT_EQ(test_one(st, s, 0.25f), 0u);  // 7 == 3 fails: FAIL op REPLACE -> 7, dropped
+    EXPECT_EQ(s.stencil(1, 2), 7u);
+    EXPECT_EQ(test_one(st, s, 0.75f), 0u);  // stencil passes, depth 0.75 < 0.5 fails: ZFAIL INCR -> 8
+    EXPECT_EQ(s.stencil(1, 2), 8u);
+    s.set_stencil(1, 2, 7);
+    EXPECT_EQ(test_one(st, s, 0.25f), 1u);  // both pass: PASS ZERO -> 0, depth written
+    EXPECT_EQ(s.stencil(1, 2), 0u);
+    EXPECT_EQ(s.stored_depth(1, 2), quantize_depth(s.info(), 0.25f));
+}
+
+TEST(DepthStencil, MasksAndReferenceOnTheLeft) {
+    DepthStencilState st;
+    st.stencil_enable = true;
+    auto s = make(Format::D24S8);
+    // (REF & MASK) LESS (stored & MASK): REF 0x12, MASK 0x0F, stored 0x35: 2 < 5 passes; with
+    // GREATER it fails (the reference is on the left).
+    st.ref = 0x12;
+    st.mask = 0x0F;
+    st.front.func = CompareFunc::Less;
+    s.set_stencil(1, 2, 0x35);
+    EXPECT_EQ(test_one(st, s, 0), 1u);
+    st.front.func = CompareFunc::Greater;
+    EXPECT_EQ(test_one(st, s, 0), 0u);
+    // Write mask: stored 0xF0, REPLACE with REF 0x0F, WRITEMASK 0x3C:
+    // (0xF0 & ~0x3C) | (0x0F & 0x3C) = 0xC0 | 0x0C = 0xCC.
+    st.front = {StencilOp::Keep, StencilOp::Keep, StencilOp::Replace, CompareFunc::Always};
+    st.ref = 0x0F;
+    st.mask = 0xFF;
+    st.write_mask = 0x3C;
+    s.set_stencil(1, 2, 0xF0);
+    EXPECT_EQ(test_one(st, s, 0), 1u);
+    EXPECT_EQ(s.stencil(1, 2), 0xCCu);
+}
+
+TEST(DepthStencil, TwoSided) {
+    RenderState rs;
+    rs.stencil_enable = true;
+    rs.stencil.pass = StencilOp::Incr;
+    rs.ccw_stencil.pass = StencilOp::Decr;
+    auto s = make(Format::D24S8);
+    s.set_stencil(1, 2, 10);
+    // Two-sided off: both windings use the clockwise set.
+    DepthStencilState st = depth_stencil_state(rs);
+    (void)test_one(st, s, 0, false);
+    EXPECT_EQ(s.stencil(1, 2), 11u);
+    rs.two_sided_stencil_mode = true;
+    st = depth_stencil_state(rs);
+    (void)test_one(st, s, 0, true);   // clockwise: INCR -> 12
+    EXPECT_EQ(s.stencil(1, 2), 12u);
+    (void)test_one(st, s, 0, false);  // counter-clockwise: DECR -> 11
+    EXPECT_EQ(s.stencil(1, 2), 11u);
+}
+
+TEST(DepthStencil, NoStencilBitsReadZero) {
+    // D24X8 has no stencil: stored reads 0, nothing is written. REF 0 EQUAL 0 passes.
+    DepthStencilState st;
+    st.stencil_enable = true;
+    st.front = {StencilOp::Keep, StencilOp::Keep, StencilOp::Replace, CompareFunc::Equal};
+    st.ref = 0;
+    auto s = make(Format::D24X8);
+    EXPECT_EQ(test_one(st, s, 0), 1u);
+    EXPECT_EQ(s.stencil(1, 2), 0u);
+    st.ref = 1;
+    EXPECT_EQ(test_one(st, s, 0), 0u);
+}
+
+}  // namespace
+}  // namespace sm2::runtime
