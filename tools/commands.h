@@ -11,6 +11,9 @@ enum ExitStatus : int { kOk = 0, kInvalidInput = 1, kBadUsage = 2 };
 // Shader text and bytecode: `asm`, `dis`, `validate`.
 void add_shader_commands(CLI::App& app, int& status);
 
+// Shader execution: `run`.
+void add_run_command(CLI::App& app, int& status);
+
 // Command streams: `cs pack`, `cs dump`.
 void add_stream_commands(CLI::App& app, int& status);
 

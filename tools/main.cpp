@@ -9,6 +9,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "sm2emu 0.1.0");
     int status = sm2::tools::kOk;
     sm2::tools::add_shader_commands(app, status);
+    sm2::tools::add_run_command(app, status);
     sm2::tools::add_stream_commands(app, status);
     try {
         app.parse(argc, argv);

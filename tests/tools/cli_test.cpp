@@ -176,4 +176,112 @@ TEST(Cli, CommandStreamErrorsNameTheLine) {
     EXPECT_EQ(sm2("cs").status, 2);  // needs pack or dump
 }
 
+const std::string kSamples = std::string(SM2_SOURCE_DIR) + "/samples/shaders/";
+
+TEST(CliRun, VertexShaderOutputs) {
+    // identity matrix in c0..c3: oPos = v0 with w from the (0,0,0,1) default fill
+    auto r = sm2("run " + kSamples + "gouraud.vs.asm --input v0=1,2,3 --input v1=0.5,0.25,1,1 "
+                 "--const c0=1,0,0,0 --const c1=0,1,0,0 --const c2=0,0,1,0 --const c3=0,0,0,1");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out, "oPos = 1 2 3 1\noD0 = 0.5 0.25 1 1\n");
+}
+
+TEST(CliRun, PrecisionModesRoundAsSpecified) {
+    const std::string shader = tmp("mul.asm");
+    write_file(shader, "ps_2_0\nmul r0, c0, c1\nmov oC0, r0\n");
+    const std::string consts = " --const c0=1,3,0.1,1 --const c1=0.3333333333,0.3333333333,1,1";
+    // fp32: 1/3 = 0x3EAAAAAB prints as 0.33333334; 3 * (1/3) rounds to exactly 1
+    EXPECT_EQ(sm2("run " + shader + consts).out, "oC0 = 0.33333334 1 0.1 1\n");
+    // fp24 (s16e7): 1/3 = 1.0101010101010101|0101.. x 2^-2 rounds down to 0.333332061767578125;
+    // 0.1 = 1.1001100110011001|1001.. x 2^-4 rounds up to 0.100000381469726562
+    EXPECT_EQ(sm2("run " + shader + consts + " --precision fp24").out, "oC0 = 0.33333206 1 0.10000038 1\n");
+    const std::string pp = tmp("mul_pp.asm");
+    write_file(pp, "ps_2_0\nmul_pp r0, c0, c1\nmov oC0, r0\n");
+    // fp16 for _pp: half(1/3) = 0x3555 = 0.333251953125, half(0.1) = 0x2E66 = 0.0999755859375
+    EXPECT_EQ(sm2("run " + pp + consts + " --precision fp16").out, "oC0 = 0.33325195 1 0.099975586 1\n");
+}
+
+TEST(CliRun, LanesFromCsvAndTexkillAsJson) {
+    const std::string shader = tmp("kill.asm"), lanes = tmp("kill.csv");
+    write_file(shader, "ps_2_0\ndcl t0\ntexkill t0\nmov oC0, t0\n");
+    write_file(lanes, "t0.x,t0.y,t0.z,t0.w\n1,2,3,4\n-1,0,0,0\n");
+    auto r = sm2("run " + shader + " --lanes " + lanes + " --json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out, "{\"shader\": \"ps_2_0\", \"precision\": \"fp32\", \"lanes\": "
+                     "[{\"oC0\": {\"x\": 1, \"y\": 2, \"z\": 3, \"w\": 4}}, {\"killed\": true}]}\n");
+}
+
+TEST(CliRun, StaticFlowConstantsFromTheCommandLine) {
+    const std::string shader = tmp("flow.asm");
+    // rep i0 adds c0 i0.x times; if b0 adds c1 once more
+    write_file(shader, "vs_2_0\ndcl_position v0\nmov r0, v0\nrep i0\nadd r0, r0, c0\nendrep\n"
+                       "if b0\nadd r0, r0, c1\nendif\nmov oPos, r0\n");
+    auto r = sm2("run " + shader + " --const c0=1,0,0,0 --const c1=0,10,0,0 --int i0=3,0,0,0 --bool b0=true");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out, "oPos = 3 10 0 1\n");  // (0,0,0,1) + 3 * (1,0,0,0) + (0,10,0,0)
+    EXPECT_EQ(sm2("run " + shader + " --const c0=1,0,0,0 --int i0=0,0,0,0").out, "oPos = 0 0 0 1\n");
+}
+
+TEST(CliRun, TexturesAndSamplerStates) {
+    // A 2x2 TGA, 32 bpp BGRA, top-left origin: red green / blue white.
+    const std::string image = tmp("quad.tga");
+    const unsigned char tga[] = {0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 2, 0, 32, 0x28,
+                                 0, 0, 255, 255, 0, 255, 0, 255, 255, 0, 0, 255, 255, 255, 255, 255};
+    write_file(image, std::string(reinterpret_cast<const char*>(tga), sizeof tga));
+    const std::string shader = tmp("tex.asm");
+    write_file(shader, "ps_2_0\ndcl t0.xy\ndcl_2d s0\ntexld r0, t0, s0\nmov oC0, r0\n");
+    // POINT (the default): (0.75, 0.25) is the centre of texel (1, 0), green
+    EXPECT_EQ(sm2("run " + shader + " --texture s0=" + image + " --input t0=0.75,0.25").out, "oC0 = 0 1 0 1\n");
+    // LINEAR at the centre: equal weights, (red + green + blue + white) / 4
+    EXPECT_EQ(sm2("run " + shader + " --texture s0=" + image +
+                  " --input t0=0.5,0.5 --sampler-state s0.MAGFILTER=LINEAR").out,
+              "oC0 = 0.5 0.5 0.5 1\n");
+    // WRAP (default) vs CLAMP at u = 1.25: wraps to texel 0 (red), clamps to texel 1 (green)
+    EXPECT_EQ(sm2("run " + shader + " --texture s0=" + image + " --input t0=1.25,0.25").out, "oC0 = 1 0 0 1\n");
+    EXPECT_EQ(sm2("run " + shader + " --texture s0=" + image +
+                  " --input t0=1.25,0.25 --sampler-state s0.ADDRESSU=CLAMP").out,
+              "oC0 = 0 1 0 1\n");
+    auto missing = sm2("run " + shader + " --texture s0=/nonexistent.png");
+    EXPECT_EQ(missing.status, 1);
+    EXPECT_NE(missing.err.find("cannot open"), std::string::npos) << missing.err;
+    auto bad = sm2("run " + shader + " --sampler-state s0.MAGFILTER=BILINEAR");
+    EXPECT_EQ(bad.status, 1);
+    EXPECT_NE(bad.err.find("not a D3DTEXF_* value"), std::string::npos) << bad.err;
+    EXPECT_EQ(sm2("run " + shader + " --texture s16=" + image).status, 1);
+}
+
+TEST(CliRun, BadInputIsStatus1WithAMessage) {
+    const std::string shader = kSamples + "gouraud.ps.asm";
+    struct Case {
+        std::string args;
+        std::string message;
+    };
+    const Case cases[] = {
+        {"--input q0=1", "unknown input register 'q0'"},
+        {"--input v2=1", "does not exist in ps_2_0"},
+        {"--input v0=1,x", "bad number 'x'"},
+        {"--input v0=1,2,3,4,5", "1 to 4 values"},
+        {"--const c32=1", "out of range (c0..c31)"},
+        {"--const c0", "expected cN=values"},
+        {"--bool b0=maybe", "true or false"},
+        {"--lanes /nonexistent.csv", "cannot open"},
+    };
+    for (const Case& c : cases) {
+        auto r = sm2("run " + shader + " " + c.args);
+        EXPECT_EQ(r.status, 1) << c.args;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
+    }
+    const std::string csv = tmp("bad.csv");
+    write_file(csv, "v0.x,v0.q\n1,2\n");
+    EXPECT_NE(sm2("run " + shader + " --lanes " + csv).err.find("component must be x, y, z or w"), std::string::npos);
+    write_file(csv, "v0.x,v0.y\n1\n");
+    EXPECT_NE(sm2("run " + shader + " --lanes " + csv).err.find(":2: 1 values for 2 columns"), std::string::npos);
+    EXPECT_EQ(sm2("run " + shader + " --precision fp8").status, 2);
+    const std::string invalid = tmp("invalid_run.asm");
+    write_file(invalid, "ps_2_0\nmov r0, c0\n");  // never writes oC0
+    auto r = sm2("run " + invalid);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("[outputs]"), std::string::npos) << r.err;
+}
+
 }  // namespace

@@ -1,0 +1,421 @@
+// sm2 run: execute one shader over a few lanes and print what it writes.
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "commands.h"
+#include "io.h"
+#include "sm2/assembler/assembler.h"
+#include "sm2/emu/engine.h"
+#include "sm2/isa/bytecode.h"
+#include "sm2/isa/validator.h"
+#include "sm2/runtime/d3d9_names.h"
+#include "sm2/runtime/sampler.h"
+#include "sm2/runtime/texture_io.h"
+
+namespace sm2::tools {
+
+namespace {
+
+struct RunOptions {
+    std::string shader;
+    std::vector<std::string> constants, integers, booleans, inputs, textures, sampler_states;
+    std::string precision = "fp32";
+    std::string transcendentals = "exact";
+    std::string lanes_csv;
+    unsigned lanes = 1;
+    bool json = false;
+};
+
+// An input error: printed as "sm2 run: <message>", exit status 1.
+struct InputError {
+    std::string message;
+};
+
+// Shortest text that reads back to the same value in the run's storage type (float or double).
+template <typename Real>
+std::string format_number(Real v, bool json) {
+    if (std::isnan(v)) return json ? "\"nan\"" : "nan";
+    if (std::isinf(v)) return json ? (v > 0 ? "\"inf\"" : "\"-inf\"") : (v > 0 ? "inf" : "-inf");
+    char buf[64];
+    auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+    (void)ec;
+    return std::string(buf, end);
+}
+
+template <typename T>
+T parse_number(std::string_view text, const std::string& what) {
+    T value{};
+    std::string_view t = text;
+    if (!t.empty() && t[0] == '+') t.remove_prefix(1);
+    if constexpr (std::is_floating_point_v<T>) {
+        if (t == "inf") return std::numeric_limits<T>::infinity();
+        if (t == "-inf") return -std::numeric_limits<T>::infinity();
+        if (t == "nan") return std::numeric_limits<T>::quiet_NaN();
+    }
+    auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
+    if (ec != std::errc{} || end != t.data() + t.size() || t.empty())
+        throw InputError{"bad number '" + std::string(text) + "' in " + what};
+    return value;
+}
+
+std::vector<std::string_view> split(std::string_view s, char sep) {
+    std::vector<std::string_view> parts;
+    size_t start = 0;
+    while (true) {
+        const size_t at = s.find(sep, start);
+        parts.push_back(s.substr(start, at == std::string_view::npos ? std::string_view::npos : at - start));
+        if (at == std::string_view::npos) return parts;
+        start = at + 1;
+    }
+}
+
+// "c4=1,2,3,4" -> (4, ["1","2","3","4"]) for register letter `letter`.
+std::pair<unsigned, std::vector<std::string_view>> register_assignment(const std::string& arg, std::string_view prefix,
+                                                                       unsigned count, const char* option) {
+    const size_t eq = arg.find('=');
+    const std::string what = std::string(option) + " '" + arg + "'";
+    if (eq == std::string::npos || arg.compare(0, prefix.size(), prefix) != 0)
+        throw InputError{"expected " + std::string(prefix) + "N=values in " + what};
+    const auto index = parse_number<unsigned>(std::string_view(arg).substr(prefix.size(), eq - prefix.size()), what);
+    if (index >= count)
+        throw InputError{std::string(prefix) + std::to_string(index) + " is out of range (" + std::string(prefix) +
+                         "0.." + std::string(prefix) + std::to_string(count - 1) + ") in " + what};
+    auto values = split(std::string_view(arg).substr(eq + 1), ',');
+    if (values.empty() || values.size() > 4) throw InputError{"expected 1 to 4 values in " + what};
+    return {index, values};
+}
+
+std::optional<isa::Program> load_program(const std::string& path) {
+    std::string error;
+    auto bytes = read_input(path, error);
+    if (!bytes) throw InputError{error};
+    const std::string name = display_name(path);
+    if (isa::looks_like_bytecode(*bytes)) {
+        auto decoded = isa::decode_bytes(*bytes);
+        if (!decoded.ok()) throw InputError{name + ": " + decoded.error->to_string()};
+        const auto violations = isa::validate(*decoded.program);
+        for (const auto& v : violations)
+            std::cerr << name << ": error: [" << isa::rule_name(v.rule) << "] " << v.message << '\n';
+        if (!violations.empty()) return std::nullopt;
+        return std::move(*decoded.program);
+    }
+    assembler::AssembleOptions options;
+    options.file_name = name;
+    auto result = assembler::assemble({reinterpret_cast<const char*>(bytes->data()), bytes->size()}, options);
+    for (const auto& d : result.diagnostics) std::cerr << d.to_string() << '\n';
+    if (!result.ok()) return std::nullopt;
+    return std::move(*result.program);
+}
+
+// Where an input register lives in a batch: v# (both shader types) or t# (pixel shaders).
+unsigned input_slot(isa::ShaderVersion version, std::string_view name, const std::string& what) {
+    isa::RegisterType type = isa::RegisterType::Input;
+    std::string_view number = name;
+    if (!name.empty() && name[0] == 'v') {
+        number.remove_prefix(1);
+    } else if (!name.empty() && name[0] == 't' && version.is_pixel()) {
+        type = isa::RegisterType::Texture;
+        number.remove_prefix(1);
+    } else {
+        throw InputError{"unknown input register '" + std::string(name) + "' in " + what +
+                         (version.is_pixel() ? " (pixel shaders read v0, v1, t0..t7)" : " (vertex shaders read v0..v15)")};
+    }
+    const auto index = parse_number<unsigned>(number, what);
+    const isa::RegisterFile* file = isa::find_register_file(version, type, index);
+    const auto slot = emu::register_slot(version.type, type, index);
+    if (!file || index >= file->count || !slot)
+        throw InputError{"input register '" + std::string(name) + "' does not exist in " + version.name()};
+    return *slot;
+}
+
+std::string output_name(unsigned s) {
+    namespace slot = emu::slot;
+    if (s == slot::kPosition) return "oPos";
+    if (s == slot::kFog) return "oFog";
+    if (s == slot::kPointSize) return "oPts";
+    if (s == slot::kDepth) return "oDepth";
+    if (s >= slot::kColorOutFirst && s < slot::kColorOutFirst + slot::kColorOutCount)
+        return "oD" + std::to_string(s - slot::kColorOutFirst);
+    if (s >= slot::kTexCoordOutFirst && s < slot::kTexCoordOutFirst + slot::kTexCoordOutCount)
+        return "oT" + std::to_string(s - slot::kTexCoordOutFirst);
+    if (s >= slot::kRenderTargetFirst && s < slot::kRenderTargetFirst + slot::kRenderTargetCount)
+        return "oC" + std::to_string(s - slot::kRenderTargetFirst);
+    return "slot" + std::to_string(s);
+}
+
+// Per-lane input values: (slot, component) -> value, from --input (all lanes) and --lanes CSV.
+struct LaneInputs {
+    struct Value {
+        unsigned slot;
+        unsigned component;
+        double value;
+    };
+    std::vector<Value> all_lanes;
+    std::vector<std::vector<Value>> per_lane;
+};
+
+LaneInputs read_inputs(const RunOptions& o, isa::ShaderVersion version) {
+    LaneInputs in;
+    for (const std::string& arg : o.inputs) {
+        const size_t eq = arg.find('=');
+        const std::string what = "--input '" + arg + "'";
+        if (eq == std::string::npos) throw InputError{"expected REGISTER=values in " + what};
+        const unsigned s = input_slot(version, std::string_view(arg).substr(0, eq), what);
+        const auto values = split(std::string_view(arg).substr(eq + 1), ',');
+        if (values.size() > 4) throw InputError{"expected 1 to 4 values in " + what};
+        // Components not given keep the input default (0, 0, 0, 1), like a short vertex element.
+        for (unsigned c = 0; c < values.size(); ++c)
+            in.all_lanes.push_back({s, c, parse_number<double>(values[c], what)});
+    }
+    if (o.lanes_csv.empty()) return in;
+    std::ifstream file(o.lanes_csv);
+    if (!file) throw InputError{o.lanes_csv + ": cannot open"};
+    std::string line;
+    if (!std::getline(file, line)) throw InputError{o.lanes_csv + ":1: empty file, expected a header"};
+    std::vector<std::pair<unsigned, unsigned>> columns;  // slot, component
+    for (std::string_view column : split(line, ',')) {
+        while (!column.empty() && (column.back() == '\r' || column.back() == ' ')) column.remove_suffix(1);
+        while (!column.empty() && column.front() == ' ') column.remove_prefix(1);
+        const size_t dot = column.find('.');
+        const std::string what = o.lanes_csv + ":1: column '" + std::string(column) + "'";
+        if (dot == std::string_view::npos || column.size() != dot + 2)
+            throw InputError{what + ": expected REGISTER.COMPONENT, e.g. v0.x"};
+        const std::string_view letters = "xyzw";
+        const size_t component = letters.find(column[dot + 1]);
+        if (component == std::string_view::npos) throw InputError{what + ": component must be x, y, z or w"};
+        columns.emplace_back(input_slot(version, column.substr(0, dot), what), static_cast<unsigned>(component));
+    }
+    unsigned row = 1;
+    while (std::getline(file, line)) {
+        ++row;
+        if (line.empty() || line == "\r") continue;
+        const auto cells = split(line, ',');
+        const std::string where = o.lanes_csv + ":" + std::to_string(row);
+        if (cells.size() != columns.size())
+            throw InputError{where + ": " + std::to_string(cells.size()) + " values for " +
+                             std::to_string(columns.size()) + " columns"};
+        std::vector<LaneInputs::Value> lane;
+        for (size_t k = 0; k < cells.size(); ++k) {
+            std::string_view cell = cells[k];
+            while (!cell.empty() && (cell.back() == '\r' || cell.back() == ' ')) cell.remove_suffix(1);
+            while (!cell.empty() && cell.front() == ' ') cell.remove_prefix(1);
+            lane.push_back({columns[k].first, columns[k].second, parse_number<double>(cell, where)});
+        }
+        in.per_lane.push_back(std::move(lane));
+    }
+    if (in.per_lane.empty()) throw InputError{o.lanes_csv + ": no lanes after the header"};
+    return in;
+}
+
+template <typename BatchType>
+int execute_and_print(const emu::Executable& executable, const emu::ConstantFile& constants,
+                      const LaneInputs& inputs, unsigned lane_total, const RunOptions& o,
+                      emu::Sampler& sampler) {
+    using Real = std::remove_reference_t<decltype(std::declval<BatchType&>().registers[0][0][0])>;
+    const auto& written = executable.components_written();
+    std::ostringstream text, json;
+    json << "{\"shader\": \"" << executable.version().name() << "\", \"precision\": \"" << o.precision
+         << "\", \"lanes\": [";
+    static constexpr char kComponents[] = "xyzw";
+    for (unsigned first = 0; first < lane_total; first += emu::kBatchLanes) {
+        auto batch = std::make_unique<BatchType>();
+        const unsigned count = std::min(emu::kBatchLanes, lane_total - first);
+        batch->lane_count = count;
+        for (unsigned lane = 0; lane < emu::kBatchLanes; ++lane) {
+            for (const auto& v : inputs.all_lanes) batch->registers[v.slot][v.component][lane] = static_cast<Real>(v.value);
+            const unsigned global = first + lane;
+            if (global < inputs.per_lane.size())
+                for (const auto& v : inputs.per_lane[global])
+                    batch->registers[v.slot][v.component][lane] = static_cast<Real>(v.value);
+        }
+        emu::execute(executable, constants, *batch, &sampler);
+        for (unsigned lane = 0; lane < count; ++lane) {
+            const unsigned global = first + lane;
+            if (global > 0) json << ", ";
+            json << "{";
+            const std::string prefix = lane_total > 1 ? "lane " + std::to_string(global) + ": " : "";
+            if (batch->killed & (emu::LaneMask{1} << lane)) {
+                text << prefix << "killed (texkill)\n";
+                json << "\"killed\": true";
+            }
+            const bool killed = (batch->killed & (emu::LaneMask{1} << lane)) != 0;
+            bool first_output = true;
+            for (unsigned s = 0; s < emu::kSlotCount && !killed; ++s) {
+                if (!emu::is_output_slot(s) || written[s] == 0) continue;
+                std::string mask;
+                std::string values;
+                std::string fields;
+                for (unsigned c = 0; c < 4; ++c) {
+                    if (!(written[s] & (1u << c))) continue;
+                    const Real value = batch->registers[s][c][lane];
+                    mask += kComponents[c];
+                    values += (values.empty() ? "" : " ") + format_number(value, false);
+                    fields += std::string(fields.empty() ? "" : ", ") + "\"" + kComponents[c] + "\": " + format_number(value, true);
+                }
+                text << prefix << output_name(s) << (mask == "xyzw" ? "" : "." + mask) << " = " << values << '\n';
+                json << (first_output ? "" : ", ") << "\"" << output_name(s) << "\": {" << fields << "}";
+                first_output = false;
+            }
+            json << "}";
+        }
+    }
+    json << "]}\n";
+    std::cout << (o.json ? json.str() : text.str());
+    return kOk;
+}
+
+// --texture sN=FILE and --sampler-state sN.STATE=VALUE (D3D9 names, e.g. s0.MINFILTER=LINEAR).
+struct BoundTextures {
+    runtime::TextureSampler sampler;
+    std::vector<std::unique_ptr<runtime::Texture>> textures;
+};
+
+std::unique_ptr<BoundTextures> bind_textures(const RunOptions& o) {
+    auto bound = std::make_unique<BoundTextures>();
+    for (const std::string& arg : o.textures) {
+        const size_t eq = arg.find('=');
+        const std::string what = "--texture '" + arg + "'";
+        if (eq == std::string::npos || arg.empty() || arg[0] != 's')
+            throw InputError{"expected sN=FILE in " + what};
+        const auto stage = parse_number<unsigned>(std::string_view(arg).substr(1, eq - 1), what);
+        if (stage >= runtime::TextureSampler::kStages) throw InputError{"sampler s" + std::to_string(stage) + " does not exist (s0..s15) in " + what};
+        try {
+            bound->textures.push_back(std::make_unique<runtime::Texture>(runtime::load_texture(arg.substr(eq + 1))));
+        } catch (const runtime::TextureIoError& e) {
+            throw InputError{e.what()};
+        }
+        bound->sampler.set_texture(stage, bound->textures.back().get());
+    }
+    for (const std::string& arg : o.sampler_states) {
+        const std::string what = "--sampler-state '" + arg + "'";
+        const size_t dot = arg.find('.'), eq = arg.find('=');
+        if (arg.empty() || arg[0] != 's' || dot == std::string::npos || eq == std::string::npos || eq < dot)
+            throw InputError{"expected sN.STATE=VALUE in " + what};
+        const auto stage = parse_number<unsigned>(std::string_view(arg).substr(1, dot - 1), what);
+        if (stage >= runtime::TextureSampler::kStages) throw InputError{"sampler s" + std::to_string(stage) + " does not exist (s0..s15) in " + what};
+        const std::string_view name = std::string_view(arg).substr(dot + 1, eq - dot - 1);
+        const std::string_view text = std::string_view(arg).substr(eq + 1);
+        const runtime::StateInfo* info = runtime::find_sampler_state(name);
+        if (!info) throw InputError{"unknown sampler state '" + std::string(name) + "' in " + what};
+        uint32_t value = 0;
+        switch (info->kind) {
+        case runtime::StateValueKind::Enum: {
+            auto v = runtime::enum_value(info->family, text);
+            if (!v) throw InputError{"'" + std::string(text) + "' is not a " + std::string(runtime::enum_prefix(info->family)) + "* value in " + what};
+            value = *v;
+            break;
+        }
+        case runtime::StateValueKind::Bool:
+            if (text == "TRUE" || text == "true" || text == "1") value = 1;
+            else if (text == "FALSE" || text == "false" || text == "0") value = 0;
+            else throw InputError{"expected TRUE or FALSE in " + what};
+            break;
+        case runtime::StateValueKind::Float:
+            value = std::bit_cast<uint32_t>(parse_number<float>(text, what));
+            break;
+        default:
+            if (text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X')) {
+                auto [end, ec] = std::from_chars(text.data() + 2, text.data() + text.size(), value, 16);
+                if (ec != std::errc{} || end != text.data() + text.size()) throw InputError{"bad number '" + std::string(text) + "' in " + what};
+            } else {
+                value = parse_number<uint32_t>(text, what);
+            }
+        }
+        bound->sampler.state(stage).set(info->id, value);
+    }
+    return bound;
+}
+
+int run_shader(const RunOptions& o) {
+    auto program = load_program(o.shader);
+    if (!program) return kInvalidInput;
+    const isa::ShaderVersion version = program->version;
+    const isa::RegisterFile* const_file = isa::find_register_file(version, "c");
+    const unsigned constant_count = const_file ? const_file->count : 0;
+
+    std::vector<std::array<float, 4>> constants(constant_count, {0, 0, 0, 0});
+    for (const std::string& arg : o.constants) {
+        auto [index, values] = register_assignment(arg, "c", constant_count, "--const");
+        for (unsigned c = 0; c < values.size(); ++c) constants[index][c] = parse_number<float>(values[c], "--const '" + arg + "'");
+    }
+    emu::StaticFlowConstants flow;
+    for (const std::string& arg : o.integers) {
+        auto [index, values] = register_assignment(arg, "i", emu::kIntConstants, "--int");
+        for (unsigned c = 0; c < values.size(); ++c) flow.integers[index][c] = parse_number<int32_t>(values[c], "--int '" + arg + "'");
+    }
+    for (const std::string& arg : o.booleans) {
+        auto [index, values] = register_assignment(arg, "b", emu::kBoolConstants, "--bool");
+        if (values.size() != 1) throw InputError{"expected one value in --bool '" + arg + "'"};
+        if (values[0] == "true" || values[0] == "1") flow.booleans[index] = true;
+        else if (values[0] == "false" || values[0] == "0") flow.booleans[index] = false;
+        else throw InputError{"expected true or false in --bool '" + arg + "'"};
+    }
+    const LaneInputs inputs = read_inputs(o, version);
+    auto textures = bind_textures(o);
+    const unsigned lane_total = std::max<unsigned>(o.lanes, static_cast<unsigned>(inputs.per_lane.size()));
+
+    emu::LoweringOptions lowering;
+    // fp16 is the ps_2_0 hardware mode: full precision fp24, _pp results rounded to s10e5.
+    if (o.precision == "fp24" || o.precision == "fp16") lowering.precision.precision = emu::Precision::Fp24;
+    if (o.precision == "fp64") lowering.precision.precision = emu::Precision::Fp64;
+    lowering.precision.partial_precision_fp16 = o.precision == "fp16";
+    if (o.transcendentals == "fast") lowering.precision.transcendentals = emu::Transcendentals::Fast;
+
+    auto shader = emu::Shader::create(std::move(*program));
+    if (!shader.shader) throw InputError{display_name(o.shader) + ": " + shader.error};
+    auto lowered = emu::lower(*shader.shader, flow, lowering);
+    if (!lowered.executable) throw InputError{display_name(o.shader) + ": " + lowered.error};
+    const emu::ConstantFile bound = lowered.executable->bind_constants(constants);
+    if (o.precision == "fp64")
+        return execute_and_print<emu::ReferenceBatch>(*lowered.executable, bound, inputs, lane_total, o, textures->sampler);
+    return execute_and_print<emu::Batch>(*lowered.executable, bound, inputs, lane_total, o, textures->sampler);
+}
+
+}  // namespace
+
+void add_run_command(CLI::App& app, int& status) {
+    auto o = std::make_shared<RunOptions>();
+    auto* cmd = app.add_subcommand("run", "Execute a vs_2_0/ps_2_0 shader and print every output it writes");
+    cmd->add_option("shader", o->shader, "Shader: assembly text or bytecode ('-' for stdin)")->required();
+    cmd->add_option("--const", o->constants, "Float constant, e.g. c4=1,2,3,4 (repeatable)");
+    cmd->add_option("--int", o->integers, "Integer constant, e.g. i0=3,0,1,0 (repeatable)");
+    cmd->add_option("--bool", o->booleans, "Boolean constant, e.g. b0=true (repeatable)");
+    cmd->add_option("--input", o->inputs,
+                    "Input for every lane, e.g. v0=1,2,3 (missing components read 0,0,0,1; repeatable)");
+    cmd->add_option("--lanes", o->lanes_csv,
+                    "CSV of per-lane inputs: a header like v0.x,v0.y,t0.x then one row per lane "
+                    "(pixel shaders: four rows per 2x2 quad)");
+    cmd->add_option("--lane-count", o->lanes, "Lanes to run when no CSV gives them (default 1)")
+        ->check(CLI::Range(1u, 4096u));
+    cmd->add_option("--texture", o->textures,
+                    "Texture for a sampler, e.g. s0=wood.png (PNG, TGA, JPEG, EXR, HDR, DDS; repeatable)");
+    cmd->add_option("--sampler-state", o->sampler_states,
+                    "Sampler state by D3D9 name, e.g. s0.MINFILTER=LINEAR or s0.MIPMAPLODBIAS=0.5 "
+                    "(defaults as D3D9: POINT, WRAP; repeatable)");
+    cmd->add_option("--precision", o->precision,
+                    "fp32 (default), fp24 (ps rounds every result to s16e7), fp16 (fp24 plus _pp "
+                    "results rounded to s10e5), fp64 (reference)")
+        ->check(CLI::IsMember({"fp32", "fp24", "fp16", "fp64"}));
+    cmd->add_option("--transcendentals", o->transcendentals,
+                    "exact (libm, default) or fast (documented minimum precision)")
+        ->check(CLI::IsMember({"exact", "fast"}));
+    cmd->add_flag("--json", o->json, "Print JSON instead of text");
+    cmd->callback([o, &status] {
+        try {
+            status = run_shader(*o);
+        } catch (const InputError& e) {
+            std::cerr << "sm2 run: " << e.message << '\n';
+            status = kInvalidInput;
+        }
+    });
+}
+
+}  // namespace sm2::tools
