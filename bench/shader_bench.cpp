@@ -107,7 +107,59 @@ void shader_benchmark(benchmark::State& state, const std::string& file, const Mo
         run<emu::Batch>(state, *lowered.executable, constants, &sampler);
 }
 
+// 32 independent instances of one transcendental instruction (kept although unused), so the
+// figure is the instruction's own cost in each mode; exact vs fast is the ratio in one run.
+std::string transcendental_shader(const std::string& instruction) {
+    std::string text =
+        "ps_2_0\ndcl t0\n"
+        "def c0, -0.0000015500992, -0.000021701389, 0.0026041667, 0.00026041668\n"
+        "def c1, -0.020833334, -0.125, 1.0, 0.5\n"
+        "mov r0, t0\n";
+    static const char* const kComponents[] = {"x", "y", "z", "w"};
+    for (int i = 0; i < 32; ++i) {
+        const std::string r = "r" + std::to_string(1 + i % 8);
+        const std::string src = std::string("r0.") + kComponents[i % 4];
+        if (instruction == "sincos")
+            text += "sincos " + r + ".xy, " + src + ", c0, c1\n";
+        else if (instruction == "pow")
+            text += "pow " + r + "." + kComponents[i % 4] + ", " + src + ", r0." + kComponents[(i + 1) % 4] + "\n";
+        else
+            text += instruction + " " + r + "." + kComponents[i % 4] + ", " + src + "\n";
+    }
+    return text + "mov oC0, r1\n";
+}
+
+void transcendental_benchmark(benchmark::State& state, const std::string& instruction, emu::Transcendentals mode) {
+    assembler::AssembleOptions no_validation;
+    no_validation.validate = false;  // 32 x pow is beyond the 64-slot budget on purpose
+    auto assembled = assembler::assemble(transcendental_shader(instruction), no_validation);
+    if (!assembled.ok()) {
+        state.SkipWithError(("cannot assemble the " + instruction + " shader").c_str());
+        return;
+    }
+    auto shader = emu::Shader::create(*assembled.program);
+    emu::LoweringOptions options;
+    options.precision.transcendentals = mode;
+    options.keep_dead_code = true;
+    auto lowered = emu::lower(*shader.shader, {}, options);
+    if (!lowered.executable) {
+        state.SkipWithError(lowered.error.c_str());
+        return;
+    }
+    const emu::ConstantFile constants = lowered.executable->bind_constants();
+    state.SetLabel(mode == emu::Transcendentals::Fast ? "fast" : "exact");
+    run<emu::Batch>(state, *lowered.executable, constants, nullptr);
+}
+
 void register_all() {
+    for (const char* instruction : {"exp", "log", "pow", "sincos"})
+        for (const auto mode : {emu::Transcendentals::Exact, emu::Transcendentals::Fast})
+            benchmark::RegisterBenchmark(
+                (std::string("transcendental/") + instruction + (mode == emu::Transcendentals::Fast ? "/fast" : "/exact")).c_str(),
+                [instruction = std::string(instruction), mode](benchmark::State& s) {
+                    transcendental_benchmark(s, instruction, mode);
+                });
+
     emu::StaticFlowConstants four_lights;
     four_lights.integers[0] = {4, 16, 2, 0};
     const emu::StaticFlowConstants none;

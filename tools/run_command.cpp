@@ -32,6 +32,7 @@ struct RunOptions {
     std::string lanes_csv;
     unsigned lanes = 1;
     bool json = false;
+    bool trace = false;
 };
 
 // An input error: printed as "sm2 run: <message>", exit status 1.
@@ -215,6 +216,34 @@ LaneInputs read_inputs(const RunOptions& o, isa::ShaderVersion version) {
     return in;
 }
 
+std::vector<std::string> describe_lines(const emu::Executable& executable) {
+    std::vector<std::string> lines;
+    std::istringstream in(executable.describe());
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
+}
+
+// The register a step wrote, per lane (or the lanes texkill discarded, or a0 after mova).
+template <typename BatchType>
+void trace_step(std::ostringstream& out, const emu::Step& step, const BatchType& batch, unsigned count,
+                unsigned first_lane) {
+    static constexpr char kComponents[] = "xyzw";
+    for (unsigned lane = 0; lane < count; ++lane) {
+        out << "    lane " << first_lane + lane << ":";
+        if (step.opcode == isa::Opcode::TexKill) {
+            out << ((batch.killed >> lane) & 1u ? " killed" : " kept");
+        } else if (step.dest.address) {
+            for (unsigned c = 0; c < 4; ++c)
+                if (step.dest.mask & (1u << c)) out << " a0." << kComponents[c] << "=" << batch.address[c][lane];
+        } else {
+            for (unsigned c = 0; c < 4; ++c)
+                if (step.dest.mask & (1u << c))
+                    out << " " << kComponents[c] << "=" << format_number(batch.registers[step.dest.slot][c][lane], false);
+        }
+        out << '\n';
+    }
+}
+
 template <typename BatchType>
 int execute_and_print(const emu::Executable& executable, const emu::ConstantFile& constants,
                       const LaneInputs& inputs, unsigned lane_total, const RunOptions& o,
@@ -236,7 +265,15 @@ int execute_and_print(const emu::Executable& executable, const emu::ConstantFile
                 for (const auto& v : inputs.per_lane[global])
                     batch->registers[v.slot][v.component][lane] = static_cast<Real>(v.value);
         }
-        emu::execute(executable, constants, *batch, &sampler);
+        if (o.trace) {
+            const std::vector<std::string> lines = describe_lines(executable);
+            emu::execute(executable, constants, *batch, &sampler, [&](size_t i, const emu::Step& step) {
+                text << "#" << i << "  " << (i < lines.size() ? lines[i] : "") << '\n';
+                trace_step(text, step, *batch, count, first);
+            });
+        } else {
+            emu::execute(executable, constants, *batch, &sampler);
+        }
         for (unsigned lane = 0; lane < count; ++lane) {
             const unsigned global = first + lane;
             if (global > 0) json << ", ";
@@ -367,6 +404,7 @@ int run_shader(const RunOptions& o) {
     if (o.precision == "fp24" || o.precision == "fp16") lowering.precision.precision = emu::Precision::Fp24;
     if (o.precision == "fp64") lowering.precision.precision = emu::Precision::Fp64;
     lowering.precision.partial_precision_fp16 = o.precision == "fp16";
+    lowering.keep_dead_code = o.trace;  // a trace shows every instruction, used or not
     if (o.transcendentals == "fast") lowering.precision.transcendentals = emu::Transcendentals::Fast;
 
     auto shader = emu::Shader::create(std::move(*program));
@@ -408,6 +446,9 @@ void add_run_command(CLI::App& app, int& status) {
                     "exact (libm, default) or fast (documented minimum precision)")
         ->check(CLI::IsMember({"exact", "fast"}));
     cmd->add_flag("--json", o->json, "Print JSON instead of text");
+    cmd->add_flag("--trace", o->trace,
+                  "Print every executed instruction (after flow control is resolved) with the "
+                  "register it wrote, per lane, before the outputs (text only)");
     cmd->callback([o, &status] {
         try {
             status = run_shader(*o);

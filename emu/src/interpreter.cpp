@@ -33,6 +33,12 @@ public:
     void run(std::span<const Step> steps) {
         for (const Step& step : steps) run_step(step);
     }
+    void run(std::span<const Step> steps, const StepObserver& observer) {
+        for (size_t i = 0; i < steps.size(); ++i) {
+            run_step(steps[i]);
+            observer(i, steps[i]);
+        }
+    }
 
 private:
     static bool has(uint8_t mask, unsigned c) { return (mask >> c) & 1u; }
@@ -325,6 +331,20 @@ void execute(const Executable& executable, const ConstantFile& constants, Refere
              Sampler* sampler) {
     check_constants(executable, constants);
     Interpreter<double>(constants, batch, sampler, executable.transcendentals()).run(executable.steps());
+}
+
+void execute(const Executable& executable, const ConstantFile& constants, Batch& batch, Sampler* sampler,
+             const StepObserver& observer) {
+    if (executable.precision() == Precision::Fp64)
+        throw std::invalid_argument("an fp64 executable runs on a ReferenceBatch");
+    check_constants(executable, constants);
+    Interpreter<float>(constants, batch, sampler, executable.transcendentals()).run(executable.steps(), observer);
+}
+
+void execute(const Executable& executable, const ConstantFile& constants, ReferenceBatch& batch,
+             Sampler* sampler, const StepObserver& observer) {
+    check_constants(executable, constants);
+    Interpreter<double>(constants, batch, sampler, executable.transcendentals()).run(executable.steps(), observer);
 }
 
 }  // namespace sm2::emu

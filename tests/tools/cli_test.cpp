@@ -211,6 +211,23 @@ TEST(CliRun, LanesFromCsvAndTexkillAsJson) {
                      "[{\"oC0\": {\"x\": 1, \"y\": 2, \"z\": 3, \"w\": 4}}, {\"killed\": true}]}\n");
 }
 
+TEST(CliRun, TracePrintsEveryStepWithWhatItWrote) {
+    const std::string shader = tmp("trace.asm"), lanes = tmp("trace.csv");
+    write_file(shader, "ps_2_0\ndcl t0\ntexkill t0\nmov oC0, t0\n");
+    write_file(lanes, "t0.x,t0.y,t0.z,t0.w\n1,2,3,4\n-1,0,0,0\n");
+    auto r = sm2("run " + shader + " --lanes " + lanes + " --trace");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out,
+              "#0  texkill t0\n"
+              "    lane 0: kept\n"
+              "    lane 1: killed\n"  // -1 < 0 in x
+              "#1  mov oC0, t0\n"
+              "    lane 0: x=1 y=2 z=3 w=4\n"
+              "    lane 1: x=-1 y=0 z=0 w=0\n"
+              "lane 0: oC0 = 1 2 3 4\n"
+              "lane 1: killed (texkill)\n");
+}
+
 TEST(CliRun, StaticFlowConstantsFromTheCommandLine) {
     const std::string shader = tmp("flow.asm");
     // rep i0 adds c0 i0.x times; if b0 adds c1 once more

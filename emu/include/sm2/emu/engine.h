@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -125,5 +126,13 @@ void execute(const Executable& executable, const ConstantFile& constants, Batch&
              Sampler* sampler = nullptr);
 void execute(const Executable& executable, const ConstantFile& constants, ReferenceBatch& batch,
              Sampler* sampler = nullptr);
+
+// The same, calling `observer(step_index, step)` after each step, with the batch as that step
+// left it (tracing: sm2 run --trace). The plain overloads above pay nothing for this.
+using StepObserver = std::function<void(size_t, const Step&)>;
+void execute(const Executable& executable, const ConstantFile& constants, Batch& batch, Sampler* sampler,
+             const StepObserver& observer);
+void execute(const Executable& executable, const ConstantFile& constants, ReferenceBatch& batch,
+             Sampler* sampler, const StepObserver& observer);
 
 }  // namespace sm2::emu
