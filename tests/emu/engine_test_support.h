@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "emu/program_builder.h"
@@ -86,16 +87,19 @@ inline bool same_bits(float a, float b) {
 
 // The value r0 holds after one instruction. Sources are usually constants c0..c3 whose values
 // are `constants`; r0 starts as `initial` (9, 9, 9, 9 by default) in every lane so write masks
-// show. Runs in a vertex shader unless `shader` says otherwise.
+// show. Without an explicit `shader`, the instruction runs in every shader type whose 2.0
+// profile allows it (the opcode table says which), and in the default fp32 mode all of them must
+// give the same bits; with `shader`, or another precision, it runs in that type (vertex by
+// default) only.
 struct OneInstruction {
-    ShaderType shader = ShaderType::Vertex;
+    std::optional<ShaderType> shader;
     emu::PrecisionOptions precision{};
     Float4 initial{9.0f, 9.0f, 9.0f, 9.0f};
 };
 
-inline Float4 run_instruction(Opcode opcode, Dst destination, std::initializer_list<Src> sources,
-                              const std::vector<Float4>& constants, const OneInstruction& how = {}) {
-    ProgramBuilder p(how.shader);
+inline Float4 run_instruction_in(ShaderType type, Opcode opcode, Dst destination, std::initializer_list<Src> sources,
+                                 const std::vector<Float4>& constants, const OneInstruction& how) {
+    ProgramBuilder p(type);
     p.op(opcode, destination, sources);
     emu::LoweringOptions options;
     options.keep_dead_code = true;
@@ -112,6 +116,28 @@ inline Float4 run_instruction(Opcode opcode, Dst destination, std::initializer_l
         for (int k = 0; k < 4; ++k) EXPECT_TRUE(same_bits(first[k], other[k])) << "lane " << lane;
     }
     return first;
+}
+
+inline Float4 run_instruction(Opcode opcode, Dst destination, std::initializer_list<Src> sources,
+                              const std::vector<Float4>& constants, const OneInstruction& how = {}) {
+    if (how.shader) return run_instruction_in(*how.shader, opcode, destination, sources, constants, how);
+    const isa::OpcodeInfo* row = isa::find_opcode(opcode);
+    const bool in_vs = row && row->allowed_in({ShaderType::Vertex, 2, 0});
+    const bool in_ps = row && row->allowed_in({ShaderType::Pixel, 2, 0});
+    const emu::PrecisionOptions fp32{};
+    const bool default_mode = how.precision.precision == fp32.precision &&
+                              how.precision.transcendentals == fp32.transcendentals &&
+                              !how.precision.partial_precision_fp16;
+    if (!in_ps || (!default_mode && in_vs))
+        return run_instruction_in(ShaderType::Vertex, opcode, destination, sources, constants, how);
+    const Float4 pixel = run_instruction_in(ShaderType::Pixel, opcode, destination, sources, constants, how);
+    if (in_vs) {
+        const Float4 vertex = run_instruction_in(ShaderType::Vertex, opcode, destination, sources, constants, how);
+        for (int k = 0; k < 4; ++k)
+            EXPECT_TRUE(same_bits(vertex[k], pixel[k]))
+                << "vs and ps differ in component " << k << ": " << vertex[k] << " vs " << pixel[k];
+    }
+    return pixel;
 }
 
 }  // namespace sm2::test
