@@ -15,6 +15,18 @@ using isa::RegisterType;
 
 namespace {
 
+// Why a loop/rep integer constant is outside its documented range ("" when it is fine). rep
+// reads only the count.
+std::string loop_constant_error(const Int4& c, bool is_loop) {
+    if (c[0] < 0 || c[0] > 255) return "the iteration count (x) must be in 0..255";
+    if (!is_loop) return {};
+    if (c[1] < 0 || c[1] > 255) return "the start value of aL (y) must be in 0..255";
+    if (c[2] < -128 || c[2] > 127) return "the step of aL (z) must be in -128..127";
+    if (c[3] != 0) return "the unused component (w) must be 0";
+    return {};
+}
+
+
 // vs_2_0 allows one level of calls; vs_2_x up to 4. Deeper (or recursive) calls are refused
 // rather than followed forever.
 constexpr int kMaxCallDepth = 4;
@@ -102,7 +114,16 @@ private:
                 if (!count(i)) return std::nullopt;
                 const size_t end_block = shader_.partner(i);
                 const bool is_loop = ins.opcode == Opcode::Loop;
-                const Int4& counts = flow_.integers[ins.sources[is_loop ? 1 : 0].index];
+                const unsigned int_register = ins.sources[is_loop ? 1 : 0].index;
+                const Int4& counts = flow_.integers[int_register];
+                // Documented ranges of the integer constant (instructions.md §12.1; validator rule
+                // 20, which needs the draw's values): count and start 0..255, step -128..127, w 0.
+                if (const std::string bad = loop_constant_error(counts, is_loop); !bad.empty()) {
+                    fail(i, "i" + std::to_string(int_register) + " = (" + std::to_string(counts[0]) + ", " +
+                                std::to_string(counts[1]) + ", " + std::to_string(counts[2]) + ", " +
+                                std::to_string(counts[3]) + "): " + bad);
+                    return std::nullopt;
+                }
                 // i#.x iterations (0 skips the body); loop: aL starts at i#.y, steps by i#.z.
                 const int32_t iterations = counts[0] > 0 ? counts[0] : 0;
                 int64_t counter = counts[1];

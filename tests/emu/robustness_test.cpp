@@ -112,13 +112,26 @@ TEST(Robustness, TooSmallConstantFileIsRefused) {
     EXPECT_THROW(emu::execute(exe, emu::ConstantFile{}, batch), std::invalid_argument);
 }
 
-TEST(Robustness, HugeLoopCountsStopAtTheLimit) {
+TEST(Robustness, HugeLoopCountsAreRefused) {
     ProgramBuilder p(ShaderType::Vertex);
     p.flow(Opcode::Loop, {aL(), i(0)}).op(Opcode::Add, rd(0), {r(0), c(0).rel_aL()}).flow(Opcode::EndLoop)
         .op(Opcode::Mov, oPos(), {r(0)});
     emu::StaticFlowConstants flow;
     flow.integers[0] = {2147483647, 2147483647, 2147483647, 0};  // aL would overflow 32 bits
-    EXPECT_NE(lowering_error(p.program(), flow).find("executed-instruction limit"), std::string::npos);
+    EXPECT_NE(lowering_error(p.program(), flow).find("iteration count (x) must be in 0..255"), std::string::npos);
+}
+
+TEST(Robustness, ExecutedInstructionLimitStopsLowering) {
+    ProgramBuilder p(ShaderType::Vertex);
+    p.flow(Opcode::Loop, {aL(), i(0)}).op(Opcode::Add, rd(0), {r(0), c(0).rel_aL()}).flow(Opcode::EndLoop)
+        .op(Opcode::Mov, oPos(), {r(0)});
+    emu::StaticFlowConstants flow;
+    flow.integers[0] = {100, 0, 1, 0};  // loop + 100 x (add + endloop) + mov = 202 executed
+    emu::LoweringOptions options;
+    options.max_executed_instructions = 150;
+    EXPECT_NE(lowering_error(p.program(), flow, options).find("executed-instruction limit"), std::string::npos);
+    options.max_executed_instructions = 202;
+    EXPECT_EQ(lowering_error(p.program(), flow, options), "");
 }
 
 }  // namespace
