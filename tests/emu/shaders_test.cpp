@@ -2,39 +2,24 @@
 // lowered and run; expected values worked out by hand in the comments.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+#include <string>
+
 #include "emu/engine_test_support.h"
+#include "isa/worked_examples.h"
 #include "sm2/isa/bytecode.h"
 
 namespace sm2::test {
 namespace {
 
-// bytecode.md §13 example C: loop/aL, if, call/label/ret.
-const char* const kExampleC = R"(vs_2_0
-dcl_position v0
-defb b0, true
-defi i0, 4, 0, 1, 0
-mov r0, v0
-loop aL, i0
-add r0, r0, c10[aL]
-endloop
-if b0
-call l1
-endif
-mov oPos, r0
-ret
-label l1
-mul r0, r0, c2
-ret
-)";
-
-const std::vector<uint32_t> kExampleCTokens{
-    0xFFFE0200, 0x0200001F, 0x80000000, 0x900F0000, 0x0200002F, 0xE00F0800, 0x00000001,
-    0x05000030, 0xF00F0000, 0x00000004, 0x00000000, 0x00000001, 0x00000000,
-    0x02000001, 0x800F0000, 0x90E40000, 0x0200001B, 0xF0E40800, 0xF0E40000,
-    0x04000002, 0x800F0000, 0x80E40000, 0xA0E4200A, 0xF0E40800, 0x0000001D,
-    0x01000028, 0xE0E40800, 0x01000019, 0xA0E41001, 0x0000002B,
-    0x02000001, 0xC00F0000, 0x80E40000, 0x0000001C, 0x0100001E, 0xA0E41001,
-    0x03000005, 0x800F0000, 0x80E40000, 0xA0E40002, 0x0000001C, 0x0000FFFF};
+// bytecode.md §13 examples: the assembly in the assembler's corpus, the tokens in the isa tests.
+std::string corpus(const char* name) {
+    std::ifstream in(std::string(SM2_SOURCE_DIR) + "/tests/assembler/corpus/" + name);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
 
 void check_example_c(const isa::Program& program) {
     // The application leaves b0 FALSE and i0 zero: defb/defi decide. aL = 0..3 adds c10..c13.
@@ -56,34 +41,17 @@ void check_example_c(const isa::Program& program) {
     EXPECT_EQ(exe.steps().size(), 7u);
 }
 
-TEST(Shaders, ExampleCFromText) { check_example_c(assemble_or_fail(kExampleC)); }
+TEST(Shaders, ExampleCFromText) { check_example_c(assemble_or_fail(corpus("example_c_flow.asm"))); }
 
 TEST(Shaders, ExampleCFromTokens) {
-    const auto decoded = isa::decode(kExampleCTokens);
+    const auto decoded = isa::decode(isa::examples::kExampleC);
     ASSERT_TRUE(decoded.ok()) << decoded.error->to_string();
     check_example_c(*decoded.program);
 }
 
 // bytecode.md §13 example B: transform, relative addressing, sincos, fog.
-const char* const kExampleB = R"(vs_2_0
-dcl_position v0
-dcl_normal v1
-dcl_texcoord0 v2
-def c8, 1.0, 0.0, 0.5, 2.0
-def c9, -0.0000015500992, -0.000021701389, 0.0026041667, 0.00026041668
-def c10, -0.020833334, -0.125, 1.0, 0.5
-m4x4 oPos, v0, c0
-dp3 r0.x, v1, c4
-max r0.x, r0.x, c8.y
-mova a0.x, c8.w
-mul oD0, r0.x, c[a0.x + 5]
-sincos r1.xy, v2.x, c9, c10
-mov oT0.xy, r1
-mov oFog, c8.x
-)";
-
 TEST(Shaders, ExampleB) {
-    const auto exe = lower_or_fail(assemble_or_fail(kExampleB));
+    const auto exe = lower_or_fail(assemble_or_fail(corpus("example_b_vs.asm")));
     std::vector<Float4> constants(8, Float4{0, 0, 0, 0});
     constants[0] = {1, 0, 0, 0};  // identity
     constants[1] = {0, 1, 0, 0};
