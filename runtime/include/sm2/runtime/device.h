@@ -1,0 +1,189 @@
+// The Device: D3D9 device state and resources, and the draws that run the pipeline stages
+// (docs/pipeline.md "A draw with these stages"). Every call returns a CallResult; a refused call
+// (D3DERR_INVALIDCALL: bad enum, index out of range, missing resource, wrong shader type, bad
+// sizes) carries a message and leaves the device exactly as it was.
+//
+// Resources are named by the caller (the command stream's handles). Bindings hold shared
+// references, so Release of a bound resource drops its name but the binding keeps it alive
+// until it is replaced (D3D9's reference counting).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "sm2/emu/engine.h"
+#include "sm2/isa/program.h"
+#include "sm2/runtime/clipper.h"
+#include "sm2/runtime/depth_stencil.h"
+#include "sm2/runtime/formats.h"
+#include "sm2/runtime/primitive_assembly.h"
+#include "sm2/runtime/render_state.h"
+#include "sm2/runtime/sampler.h"
+#include "sm2/runtime/surface.h"
+#include "sm2/runtime/texture.h"
+#include "sm2/runtime/vertex_fetch.h"
+
+namespace sm2::runtime {
+
+struct CallResult {
+    bool ok = true;
+    std::string error;  // why D3D9 would answer D3DERR_INVALIDCALL
+    [[nodiscard]] static CallResult success() { return {}; }
+    [[nodiscard]] static CallResult fail(std::string message) { return {false, std::move(message)}; }
+    explicit operator bool() const { return ok; }
+};
+
+// D3DCLEAR_* flags.
+constexpr uint32_t kClearTarget = 1, kClearZBuffer = 2, kClearStencil = 4;
+
+constexpr unsigned kMaxVertexShaderConstantsF = 256;  // our D3DCAPS9.MaxVertexShaderConst
+constexpr unsigned kMaxPixelShaderConstantsF = 224;   // D3D9's SetPixelShaderConstantF range
+constexpr unsigned kMaxConstantsI = 16;
+constexpr unsigned kMaxConstantsB = 16;
+constexpr unsigned kMaxSamplers = 16;
+
+struct DeviceOptions {
+    // Where Present writes frame_NNNN.png (empty: frames are counted but not written).
+    std::string output_dir;
+    // Writes a surface to a file; default: image_io's write_surface.
+    std::function<void(const Surface&, const std::string& path)> write_image;
+    // Tiles are processed by this many threads (1: on the calling thread). Output does not
+    // depend on it.
+    unsigned threads = 1;
+};
+
+struct DrawStatistics {
+    uint64_t draws = 0, vertices_shaded = 0, primitives = 0, pixels_shaded = 0;
+    uint64_t pipelines_built = 0;
+};
+
+class Device {
+public:
+    explicit Device(DeviceOptions options = {});
+    ~Device();
+    Device(const Device&) = delete;
+    Device& operator=(const Device&) = delete;
+
+    // Resources
+    CallResult create_device(uint32_t width, uint32_t height, Format format,
+                             std::optional<Format> depth_format = std::nullopt);
+    CallResult create_vertex_buffer(const std::string& name, uint32_t length);
+    CallResult create_index_buffer(const std::string& name, uint32_t length, Format format);
+    CallResult create_texture(const std::string& name, uint32_t width, uint32_t height, uint32_t levels,
+                              Format format, bool render_target = false);
+    CallResult create_cube_texture(const std::string& name, uint32_t edge, uint32_t levels, Format format,
+                                   bool render_target = false);
+    CallResult create_volume_texture(const std::string& name, uint32_t width, uint32_t height,
+                                     uint32_t depth, uint32_t levels, Format format);
+    CallResult create_render_target(const std::string& name, uint32_t width, uint32_t height, Format format);
+    CallResult create_depth_stencil_surface(const std::string& name, uint32_t width, uint32_t height,
+                                            Format format);
+    CallResult create_vertex_declaration(const std::string& name, std::vector<VertexElement> elements);
+    // The program is validated (isa::validate) and must be a vertex / pixel shader.
+    CallResult create_vertex_shader(const std::string& name, isa::Program program);
+    CallResult create_pixel_shader(const std::string& name, isa::Program program);
+    CallResult lock(const std::string& buffer, uint32_t offset, std::span<const std::byte> data);
+    // Rows tightly packed; data must be exactly one level (face) of the texture or surface.
+    CallResult lock_rect(const std::string& texture, uint32_t face, uint32_t level,
+                         std::span<const std::byte> data);
+    CallResult lock_box(const std::string& texture, uint32_t level, std::span<const std::byte> data);
+    CallResult load_texture(const std::string& name, const std::string& path, bool generate_mips);
+    CallResult generate_mip_sub_levels(const std::string& texture);
+    CallResult release(const std::string& name);
+
+    // Bindings ("" unbinds)
+    CallResult set_vertex_declaration(const std::string& name);
+    CallResult set_vertex_shader(const std::string& name);
+    CallResult set_pixel_shader(const std::string& name);
+    CallResult set_indices(const std::string& name);
+    CallResult set_stream_source(uint32_t stream, const std::string& buffer, uint32_t offset, uint32_t stride);
+    CallResult set_texture(uint32_t stage, const std::string& texture);
+    CallResult set_render_target(uint32_t index, const std::string& surface);
+    CallResult set_depth_stencil_surface(const std::string& surface);
+
+    // States and constants
+    CallResult set_render_state(uint32_t type, uint32_t value);
+    CallResult set_sampler_state(uint32_t sampler, uint32_t type, uint32_t value);
+    CallResult set_vertex_shader_constant_f(uint32_t start, std::span<const float> values);
+    CallResult set_pixel_shader_constant_f(uint32_t start, std::span<const float> values);
+    CallResult set_vertex_shader_constant_i(uint32_t start, std::span<const int32_t> values);
+    CallResult set_pixel_shader_constant_i(uint32_t start, std::span<const int32_t> values);
+    CallResult set_vertex_shader_constant_b(uint32_t start, std::span<const uint32_t> values);
+    CallResult set_pixel_shader_constant_b(uint32_t start, std::span<const uint32_t> values);
+    CallResult set_viewport(const Viewport& viewport);
+    CallResult set_scissor_rect(const PixelRect& rect);
+    CallResult set_clip_plane(uint32_t index, const Vec4& plane);
+
+    // Frame
+    CallResult clear(uint32_t flags, uint32_t color, float z, uint32_t stencil);
+    CallResult begin_scene();
+    CallResult end_scene();
+    CallResult present();
+    CallResult save_surface(const std::string& surface, const std::string& path);
+
+    // Draws
+    CallResult draw_primitive(uint32_t type, uint32_t start_vertex, uint32_t primitive_count);
+    CallResult draw_indexed_primitive(uint32_t type, int32_t base_vertex, uint32_t min_index,
+                                      uint32_t num_vertices, uint32_t start_index, uint32_t primitive_count);
+    CallResult draw_primitive_up(uint32_t type, uint32_t primitive_count, std::span<const std::byte> vertices,
+                                 uint32_t stride);
+    CallResult draw_indexed_primitive_up(uint32_t type, uint32_t min_index, uint32_t num_vertices,
+                                         uint32_t primitive_count, std::span<const std::byte> indices,
+                                         Format index_format, std::span<const std::byte> vertices,
+                                         uint32_t stride);
+
+    // Inspection (tests, tools)
+    [[nodiscard]] const Surface* surface(const std::string& name) const;  // render target, back buffer, texture level 0
+    [[nodiscard]] const DepthStencilSurface* depth_stencil(const std::string& name) const;
+    [[nodiscard]] const RenderState& render_state() const { return render_state_; }
+    [[nodiscard]] const Viewport& viewport() const { return viewport_; }
+    [[nodiscard]] bool has_resource(const std::string& name) const { return resources_.count(name) != 0; }
+    [[nodiscard]] uint32_t frames_presented() const { return frame_; }
+    [[nodiscard]] const DrawStatistics& statistics() const { return stats_; }
+
+    struct Resource;
+    struct ShaderObject;
+
+private:
+    struct Draw;
+    CallResult create_shader(const std::string& name, isa::Program program, isa::ShaderType type);
+    CallResult add_resource(const std::string& name, std::shared_ptr<Resource> resource);
+    std::shared_ptr<Resource> find(const std::string& name) const;
+    CallResult run_draw(uint32_t type, uint32_t primitive_count, std::vector<uint32_t> draw_vertices,
+                        std::span<const VertexStream> streams);
+    Surface* render_target_surface(unsigned index) const;
+
+    DeviceOptions options_;
+    std::map<std::string, std::shared_ptr<Resource>> resources_;
+    bool created_ = false;
+    RenderState render_state_ = RenderState::defaults(false);
+    std::array<SamplerState, kMaxSamplers> sampler_states_{};
+    std::array<std::shared_ptr<Resource>, kMaxSamplers> textures_{};
+    std::array<std::shared_ptr<Resource>, kMaxRenderTargets> render_targets_{};
+    std::shared_ptr<Resource> depth_stencil_, back_buffer_;
+    std::shared_ptr<Resource> declaration_, vertex_shader_, pixel_shader_, indices_;
+    struct StreamBinding {
+        std::shared_ptr<Resource> buffer;
+        uint32_t offset = 0, stride = 0;
+    };
+    std::array<StreamBinding, kMaxVertexStreams> streams_{};
+    std::vector<std::array<float, 4>> vs_f_, ps_f_;
+    emu::StaticFlowConstants vs_flow_{}, ps_flow_{};
+    Viewport viewport_{};
+    PixelRect scissor_{};
+    std::array<Vec4, kMaxUserClipPlanes> clip_planes_{};
+    bool in_scene_ = false;
+    uint32_t frame_ = 0;
+    DrawStatistics stats_{};
+    TextureSampler sampler_;
+};
+
+}  // namespace sm2::runtime

@@ -1,0 +1,588 @@
+// The Device: resources, bindings, states, constants, Clear/Present. The draw loop itself is in
+// draw.cpp.
+#include "sm2/runtime/device.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <string>
+#include <utility>
+
+#include "device_internal.h"
+#include "sm2/isa/validator.h"
+#include "sm2/runtime/image_io.h"
+#include "sm2/runtime/texture_io.h"
+
+namespace sm2::runtime {
+
+namespace {
+
+std::string format_name(Format format) {
+    const FormatInfo* info = format_info(format);
+    return info ? std::string(info->name) : "format " + std::to_string(static_cast<uint32_t>(format));
+}
+
+bool is_render_target_format(Format format) {
+    const FormatInfo* info = format_info(format);
+    return info && info->render_target && info->kind != FormatKind::Depth;
+}
+
+}  // namespace
+
+Device::Device(DeviceOptions options) : options_(std::move(options)) {
+    vs_f_.assign(kMaxVertexShaderConstantsF, {0.0f, 0.0f, 0.0f, 0.0f});
+    ps_f_.assign(kMaxPixelShaderConstantsF, {0.0f, 0.0f, 0.0f, 0.0f});
+    if (options_.threads == 0) options_.threads = 1;
+}
+
+Device::~Device() = default;
+
+std::shared_ptr<Device::Resource> Device::find(const std::string& name) const {
+    auto it = resources_.find(name);
+    return it == resources_.end() ? nullptr : it->second;
+}
+
+CallResult Device::add_resource(const std::string& name, std::shared_ptr<Resource> resource) {
+    if (name.empty() || name == "NULL") return CallResult::fail("'" + name + "' is not a usable resource name");
+    if (resources_.count(name)) return CallResult::fail("a resource named '" + name + "' already exists");
+    resources_.emplace(name, std::move(resource));
+    return {};
+}
+
+Surface* Device::render_target_surface(unsigned index) const {
+    const auto& r = render_targets_[index];
+    if (!r) return nullptr;
+    return r->kind == Resource::Kind::Texture ? &r->texture.surface(0, 0) : &r->surface;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Resources
+
+CallResult Device::create_device(uint32_t width, uint32_t height, Format format,
+                                 std::optional<Format> depth_format) {
+    if (created_) return CallResult::fail("CreateDevice: the device already exists");
+    if (width == 0 || height == 0 || width > Texture::kMaxSize2D || height > Texture::kMaxSize2D)
+        return CallResult::fail("CreateDevice: back buffer size " + std::to_string(width) + "x" +
+                                std::to_string(height) + " is out of range");
+    if (!is_render_target_format(format))
+        return CallResult::fail("CreateDevice: " + format_name(format) + " is not a render-target format");
+    if (resources_.count("backbuffer") || (depth_format && resources_.count("autodepth")))
+        return CallResult::fail("CreateDevice: the names 'backbuffer'/'autodepth' are taken");
+    std::shared_ptr<Resource> depth;
+    if (depth_format) {
+        auto created = DepthStencilSurface::create(*depth_format, width, height);
+        if (!created.surface) return CallResult::fail("CreateDevice: " + created.error);
+        depth = std::make_shared<Resource>();
+        depth->kind = Resource::Kind::DepthStencil;
+        depth->depth = std::move(created.surface);
+    }
+    auto back = std::make_shared<Resource>();
+    back->kind = Resource::Kind::RenderTarget;
+    back->surface = Surface(format, width, height);
+    resources_.emplace("backbuffer", back);
+    back_buffer_ = back;
+    render_targets_[0] = back;
+    if (depth) {
+        resources_.emplace("autodepth", depth);
+        depth_stencil_ = depth;
+        render_state_.z_enable = ZBufferType::True;
+    }
+    viewport_ = Viewport{0, 0, width, height, 0.0f, 1.0f};
+    scissor_ = PixelRect{0, 0, static_cast<int32_t>(width), static_cast<int32_t>(height)};
+    created_ = true;
+    return {};
+}
+
+CallResult Device::create_vertex_buffer(const std::string& name, uint32_t length) {
+    if (length == 0 || length > (1u << 30)) return CallResult::fail("CreateVertexBuffer: length " + std::to_string(length) + " is out of range");
+    auto r = std::make_shared<Resource>();
+    r->kind = Resource::Kind::VertexBuffer;
+    r->bytes.assign(length, std::byte{0});
+    return add_resource(name, std::move(r));
+}
+
+CallResult Device::create_index_buffer(const std::string& name, uint32_t length, Format format) {
+    if (format != Format::INDEX16 && format != Format::INDEX32)
+        return CallResult::fail("CreateIndexBuffer: " + format_name(format) + " is not INDEX16 or INDEX32");
+    if (length == 0 || length > (1u << 30)) return CallResult::fail("CreateIndexBuffer: length " + std::to_string(length) + " is out of range");
+    auto r = std::make_shared<Resource>();
+    r->kind = Resource::Kind::IndexBuffer;
+    r->bytes.assign(length, std::byte{0});
+    r->index_format = format == Format::INDEX16 ? IndexFormat::Index16 : IndexFormat::Index32;
+    return add_resource(name, std::move(r));
+}
+
+CallResult Device::create_texture(const std::string& name, uint32_t width, uint32_t height, uint32_t levels,
+                                  Format format, bool render_target) {
+    if (resources_.count(name)) return CallResult::fail("a resource named '" + name + "' already exists");
+    if (render_target && !is_render_target_format(format))
+        return CallResult::fail("CreateTexture: " + format_name(format) + " cannot be a render target");
+    auto r = std::make_shared<Resource>();
+    r->kind = Resource::Kind::Texture;
+    r->render_target_usage = render_target;
+    try {
+        r->texture = Texture::create_2d(format, width, height, levels);
+    } catch (const std::exception& e) {
+        return CallResult::fail(std::string("CreateTexture: ") + e.what());
+    }
+    return add_resource(name, std::move(r));
+}
+
+CallResult Device::create_cube_texture(const std::string& name, uint32_t edge, uint32_t levels, Format format,
+                                       bool render_target) {
+    if (resources_.count(name)) return CallResult::fail("a resource named '" + name + "' already exists");
+    if (render_target && !is_render_target_format(format))
+        return CallResult::fail("CreateCubeTexture: " + format_name(format) + " cannot be a render target");
+    auto r = std::make_shared<Resource>();
+    r->kind = Resource::Kind::Texture;
+    r->render_target_usage = render_target;
+    try {
+        r->texture = Texture::create_cube(format, edge, levels);
+    } catch (const std::exception& e) {
+        return CallResult::fail(std::string("CreateCubeTexture: ") + e.what());
+    }
+    return add_resource(name, std::move(r));
+}
+
+CallResult Device::create_volume_texture(const std::string& name, uint32_t width, uint32_t height,
+                                         uint32_t depth, uint32_t levels, Format format) {
+    if (resources_.count(name)) return CallResult::fail("a resource named '" + name + "' already exists");
+    auto r = std::make_shared<Resource>();
+    r->kind = Resource::Kind::Texture;
+    try {
+        r->texture = Texture::create_volume(format, width, height, depth, levels);
+    } catch (const std::exception& e) {
+        return CallResult::fail(std::string("CreateVolumeTexture: ") + e.what());
+    }
+    return add_resource(name, std::move(r));
+}
+
+CallResult Device::create_render_target(const std::string& name, uint32_t width, uint32_t height, Format format) {
+    if (width == 0 || height == 0 || width > Texture::kMaxSize2D || height > Texture::kMaxSize2D)
+        return CallResult::fail("CreateRenderTarget: size " + std::to_string(width) + "x" + std::to_string(height) +
+                                " is out of range");
+    if (!is_render_target_format(format))
+        return CallResult::fail("CreateRenderTarget: " + format_name(format) + " is not a render-target format");
+    auto r = std::make_shared<Resource>();
+    r->kind = Resource::Kind::RenderTarget;
+    r->surface = Surface(format, width, height);
+    return add_resource(name, std::move(r));
+}
+
+CallResult Device::create_depth_stencil_surface(const std::string& name, uint32_t width, uint32_t height,
+                                                Format format) {
+    if (resources_.count(name)) return CallResult::fail("a resource named '" + name + "' already exists");
+    auto created = DepthStencilSurface::create(format, width, height);
+    if (!created.surface) return CallResult::fail("CreateDepthStencilSurface: " + created.error);
+    auto r = std::make_shared<Resource>();
+    r->kind = Resource::Kind::DepthStencil;
+    r->depth = std::move(created.surface);
+    return add_resource(name, std::move(r));
+}
+
+CallResult Device::create_vertex_declaration(const std::string& name, std::vector<VertexElement> elements) {
+    if (elements.empty() || elements.size() > kMaxDeclElements)
+        return CallResult::fail("CreateVertexDeclaration: " + std::to_string(elements.size()) +
+                                " elements (1 to " + std::to_string(kMaxDeclElements) + " allowed)");
+    // Check the elements on their own (types, streams, usages, duplicates): a plan for no inputs.
+    auto checked = plan_fetch(elements, {});
+    if (!checked.plan) return CallResult::fail("CreateVertexDeclaration: " + checked.error);
+    auto r = std::make_shared<Resource>();
+    r->kind = Resource::Kind::Declaration;
+    r->elements = std::move(elements);
+    return add_resource(name, std::move(r));
+}
+
+CallResult Device::create_shader(const std::string& name, isa::Program program, isa::ShaderType type) {
+    const char* call = type == isa::ShaderType::Vertex ? "CreateVertexShader" : "CreatePixelShader";
+    if (program.version.type != type)
+        return CallResult::fail(std::string(call) + ": the program is a " +
+                                (program.version.is_vertex() ? "vertex" : "pixel") + " shader");
+    if (resources_.count(name)) return CallResult::fail("a resource named '" + name + "' already exists");
+    auto violations = isa::validate(program);
+    if (!violations.empty()) return CallResult::fail(std::string(call) + ": " + violations.front().message);
+    auto object = std::make_shared<ShaderObject>();
+    for (const auto& ins : program.instructions)
+        if (ins.opcode == isa::Opcode::TexKill) object->texkill = true;
+    if (type == isa::ShaderType::Vertex) object->inputs = shader_inputs(program);
+    auto created = emu::Shader::create(std::move(program));
+    if (!created.shader) return CallResult::fail(std::string(call) + ": " + created.error);
+    object->shader.emplace(std::move(*created.shader));
+    auto r = std::make_shared<Resource>();
+    r->kind = type == isa::ShaderType::Vertex ? Resource::Kind::VertexShader : Resource::Kind::PixelShader;
+    r->shader = std::move(object);
+    return add_resource(name, std::move(r));
+}
+
+CallResult Device::create_vertex_shader(const std::string& name, isa::Program program) {
+    return create_shader(name, std::move(program), isa::ShaderType::Vertex);
+}
+CallResult Device::create_pixel_shader(const std::string& name, isa::Program program) {
+    return create_shader(name, std::move(program), isa::ShaderType::Pixel);
+}
+
+CallResult Device::lock(const std::string& buffer, uint32_t offset, std::span<const std::byte> data) {
+    auto r = find(buffer);
+    if (!r) return CallResult::fail("Lock: no resource named '" + buffer + "'");
+    if (r->kind != Resource::Kind::VertexBuffer && r->kind != Resource::Kind::IndexBuffer)
+        return CallResult::fail("Lock: '" + buffer + "' is not a vertex or index buffer");
+    if (offset > r->bytes.size() || data.size() > r->bytes.size() - offset)
+        return CallResult::fail("Lock: " + std::to_string(data.size()) + " bytes at offset " + std::to_string(offset) +
+                                " do not fit in '" + buffer + "' (" + std::to_string(r->bytes.size()) + " bytes)");
+    std::copy(data.begin(), data.end(), r->bytes.begin() + offset);
+    return {};
+}
+
+CallResult Device::lock_rect(const std::string& texture, uint32_t face, uint32_t level,
+                             std::span<const std::byte> data) {
+    auto r = find(texture);
+    if (!r) return CallResult::fail("LockRect: no resource named '" + texture + "'");
+    Surface* target = nullptr;
+    if (r->kind == Resource::Kind::RenderTarget) {
+        if (face != 0 || level != 0) return CallResult::fail("LockRect: a render target has one level");
+        target = &r->surface;
+    } else if (r->kind == Resource::Kind::Texture && r->texture.type() != TextureType::Volume) {
+        if (face >= r->texture.faces()) return CallResult::fail("LockRect: face " + std::to_string(face) + " out of range");
+        if (level >= r->texture.levels()) return CallResult::fail("LockRect: level " + std::to_string(level) + " out of range");
+        target = &r->texture.surface(level, face);
+    } else {
+        return CallResult::fail("LockRect: '" + texture + "' is not a 2D/cube texture or render target");
+    }
+    if (data.size() != target->bytes().size())
+        return CallResult::fail("LockRect: " + std::to_string(data.size()) + " bytes given, the level holds " +
+                                std::to_string(target->bytes().size()));
+    std::copy(data.begin(), data.end(), target->bytes().begin());
+    return {};
+}
+
+CallResult Device::lock_box(const std::string& texture, uint32_t level, std::span<const std::byte> data) {
+    auto r = find(texture);
+    if (!r) return CallResult::fail("LockBox: no resource named '" + texture + "'");
+    if (r->kind != Resource::Kind::Texture || r->texture.type() != TextureType::Volume)
+        return CallResult::fail("LockBox: '" + texture + "' is not a volume texture");
+    if (level >= r->texture.levels()) return CallResult::fail("LockBox: level " + std::to_string(level) + " out of range");
+    Surface& target = r->texture.surface(level, 0);
+    if (data.size() != target.bytes().size())
+        return CallResult::fail("LockBox: " + std::to_string(data.size()) + " bytes given, the level holds " +
+                                std::to_string(target.bytes().size()));
+    std::copy(data.begin(), data.end(), target.bytes().begin());
+    return {};
+}
+
+CallResult Device::load_texture(const std::string& name, const std::string& path, bool generate_mips) {
+    if (resources_.count(name)) return CallResult::fail("a resource named '" + name + "' already exists");
+    auto r = std::make_shared<Resource>();
+    r->kind = Resource::Kind::Texture;
+    try {
+        r->texture = runtime::load_texture(path, TextureLoadOptions{generate_mips});
+    } catch (const std::exception& e) {
+        return CallResult::fail(std::string("LoadTexture: ") + e.what());
+    }
+    return add_resource(name, std::move(r));
+}
+
+CallResult Device::generate_mip_sub_levels(const std::string& texture) {
+    auto r = find(texture);
+    if (!r || r->kind != Resource::Kind::Texture)
+        return CallResult::fail("GenerateMipSubLevels: '" + texture + "' is not a texture");
+    Texture copy = r->texture;
+    try {
+        copy.generate_mips();
+    } catch (const std::exception& e) {
+        return CallResult::fail(std::string("GenerateMipSubLevels: ") + e.what());
+    }
+    r->texture = std::move(copy);
+    return {};
+}
+
+CallResult Device::release(const std::string& name) {
+    auto it = resources_.find(name);
+    if (it == resources_.end()) return CallResult::fail("Release: no resource named '" + name + "'");
+    resources_.erase(it);
+    return {};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bindings
+
+namespace {
+
+CallResult bind_resource(const std::shared_ptr<Device::Resource>& found, const std::string& name, const char* call,
+                Device::Resource::Kind kind, const char* what, std::shared_ptr<Device::Resource>& slot) {
+    if (name.empty() || name == "NULL") {
+        slot = nullptr;
+        return {};
+    }
+    if (!found) return CallResult::fail(std::string(call) + ": no resource named '" + name + "'");
+    if (found->kind != kind) return CallResult::fail(std::string(call) + ": '" + name + "' is not a " + what);
+    slot = found;
+    return {};
+}
+
+}  // namespace
+
+CallResult Device::set_vertex_declaration(const std::string& name) {
+    return bind_resource(find(name), name, "SetVertexDeclaration", Resource::Kind::Declaration, "vertex declaration", declaration_);
+}
+CallResult Device::set_vertex_shader(const std::string& name) {
+    return bind_resource(find(name), name, "SetVertexShader", Resource::Kind::VertexShader, "vertex shader", vertex_shader_);
+}
+CallResult Device::set_pixel_shader(const std::string& name) {
+    return bind_resource(find(name), name, "SetPixelShader", Resource::Kind::PixelShader, "pixel shader", pixel_shader_);
+}
+CallResult Device::set_indices(const std::string& name) {
+    return bind_resource(find(name), name, "SetIndices", Resource::Kind::IndexBuffer, "index buffer", indices_);
+}
+
+CallResult Device::set_stream_source(uint32_t stream, const std::string& buffer, uint32_t offset, uint32_t stride) {
+    if (stream >= kMaxVertexStreams) return CallResult::fail("SetStreamSource: stream " + std::to_string(stream) + " out of range");
+    std::shared_ptr<Resource> found;
+    auto result = bind_resource(find(buffer), buffer, "SetStreamSource", Resource::Kind::VertexBuffer, "vertex buffer", found);
+    if (!result) return result;
+    if (found && stride == 0) return CallResult::fail("SetStreamSource: stride 0");
+    if (found && offset >= found->bytes.size() && offset != 0)
+        return CallResult::fail("SetStreamSource: offset " + std::to_string(offset) + " is past the buffer");
+    streams_[stream] = StreamBinding{found, offset, stride};
+    return {};
+}
+
+CallResult Device::set_texture(uint32_t stage, const std::string& texture) {
+    if (stage >= kMaxSamplers) return CallResult::fail("SetTexture: stage " + std::to_string(stage) + " out of range");
+    auto result = bind_resource(find(texture), texture, "SetTexture", Resource::Kind::Texture, "texture", textures_[stage]);
+    if (result) sampler_.set_texture(stage, textures_[stage] ? &textures_[stage]->texture : nullptr);
+    return result;
+}
+
+CallResult Device::set_render_target(uint32_t index, const std::string& name) {
+    if (index >= kMaxRenderTargets) return CallResult::fail("SetRenderTarget: index " + std::to_string(index) + " out of range");
+    const bool null = name.empty() || name == "NULL";
+    if (null) {
+        if (index == 0) return CallResult::fail("SetRenderTarget: render target 0 cannot be NULL");
+        render_targets_[index] = nullptr;
+        return {};
+    }
+    auto r = find(name);
+    if (!r) return CallResult::fail("SetRenderTarget: no resource named '" + name + "'");
+    const Surface* s = nullptr;
+    if (r->kind == Resource::Kind::RenderTarget) s = &r->surface;
+    else if (r->kind == Resource::Kind::Texture && r->render_target_usage && r->texture.type() == TextureType::Texture2D)
+        s = &r->texture.surface(0, 0);
+    if (!s) return CallResult::fail("SetRenderTarget: '" + name + "' is not a render target");
+    render_targets_[index] = r;
+    if (index == 0) {
+        viewport_ = Viewport{0, 0, s->width(), s->height(), 0.0f, 1.0f};
+        scissor_ = PixelRect{0, 0, static_cast<int32_t>(s->width()), static_cast<int32_t>(s->height())};
+    }
+    return {};
+}
+
+CallResult Device::set_depth_stencil_surface(const std::string& name) {
+    return bind_resource(find(name), name, "SetDepthStencilSurface", Resource::Kind::DepthStencil, "depth-stencil surface",
+                depth_stencil_);
+}
+
+// ---------------------------------------------------------------------------------------------
+// States and constants
+
+CallResult Device::set_render_state(uint32_t type, uint32_t value) {
+    RenderState copy = render_state_;
+    auto result = runtime::set_render_state(copy, type, value);
+    if (!result.ok) return CallResult::fail("SetRenderState: " + result.error);
+    render_state_ = copy;
+    return {};
+}
+
+CallResult Device::set_sampler_state(uint32_t sampler, uint32_t type, uint32_t value) {
+    if (sampler >= kMaxSamplers) return CallResult::fail("SetSamplerState: sampler " + std::to_string(sampler) + " out of range");
+    SamplerState copy = sampler_states_[sampler];
+    if (!copy.set(type, value)) return CallResult::fail("SetSamplerState: state " + std::to_string(type) + " does not exist");
+    sampler_states_[sampler] = copy;
+    sampler_.set_state(sampler, copy);
+    return {};
+}
+
+namespace {
+
+CallResult set_floats(const char* call, std::vector<std::array<float, 4>>& file, uint32_t start,
+                      std::span<const float> values) {
+    if (values.size() % 4 != 0) return CallResult::fail(std::string(call) + ": " + std::to_string(values.size()) + " floats is not a whole number of registers");
+    const size_t count = values.size() / 4;
+    if (start > file.size() || count > file.size() - start)
+        return CallResult::fail(std::string(call) + ": registers " + std::to_string(start) + ".." +
+                                std::to_string(start + count) + " exceed " + std::to_string(file.size()));
+    for (size_t i = 0; i < count; ++i)
+        for (unsigned c = 0; c < 4; ++c) file[start + i][c] = values[4 * i + c];
+    return {};
+}
+
+CallResult set_ints(const char* call, emu::StaticFlowConstants& flow, uint32_t start, std::span<const int32_t> values) {
+    if (values.size() % 4 != 0) return CallResult::fail(std::string(call) + ": " + std::to_string(values.size()) + " integers is not a whole number of registers");
+    const size_t count = values.size() / 4;
+    if (start > kMaxConstantsI || count > kMaxConstantsI - start)
+        return CallResult::fail(std::string(call) + ": registers " + std::to_string(start) + ".." +
+                                std::to_string(start + count) + " exceed 16");
+    for (size_t i = 0; i < count; ++i)
+        for (unsigned c = 0; c < 4; ++c) flow.integers[start + i][c] = values[4 * i + c];
+    return {};
+}
+
+CallResult set_bools(const char* call, emu::StaticFlowConstants& flow, uint32_t start, std::span<const uint32_t> values) {
+    if (start > kMaxConstantsB || values.size() > kMaxConstantsB - start)
+        return CallResult::fail(std::string(call) + ": registers " + std::to_string(start) + ".." +
+                                std::to_string(start + values.size()) + " exceed 16");
+    for (size_t i = 0; i < values.size(); ++i) flow.booleans[start + i] = values[i] != 0;
+    return {};
+}
+
+}  // namespace
+
+CallResult Device::set_vertex_shader_constant_f(uint32_t start, std::span<const float> values) {
+    return set_floats("SetVertexShaderConstantF", vs_f_, start, values);
+}
+CallResult Device::set_pixel_shader_constant_f(uint32_t start, std::span<const float> values) {
+    return set_floats("SetPixelShaderConstantF", ps_f_, start, values);
+}
+CallResult Device::set_vertex_shader_constant_i(uint32_t start, std::span<const int32_t> values) {
+    return set_ints("SetVertexShaderConstantI", vs_flow_, start, values);
+}
+CallResult Device::set_pixel_shader_constant_i(uint32_t start, std::span<const int32_t> values) {
+    return set_ints("SetPixelShaderConstantI", ps_flow_, start, values);
+}
+CallResult Device::set_vertex_shader_constant_b(uint32_t start, std::span<const uint32_t> values) {
+    return set_bools("SetVertexShaderConstantB", vs_flow_, start, values);
+}
+CallResult Device::set_pixel_shader_constant_b(uint32_t start, std::span<const uint32_t> values) {
+    return set_bools("SetPixelShaderConstantB", ps_flow_, start, values);
+}
+
+CallResult Device::set_viewport(const Viewport& viewport) {
+    const Surface* rt = render_target_surface(0);
+    if (!rt) return CallResult::fail("SetViewport: no render target is bound");
+    if (viewport.width == 0 || viewport.height == 0 || viewport.x > rt->width() ||
+        viewport.width > rt->width() - viewport.x || viewport.y > rt->height() ||
+        viewport.height > rt->height() - viewport.y)
+        return CallResult::fail("SetViewport: the viewport does not fit the render target");
+    if (!(viewport.min_z >= 0.0f && viewport.min_z <= 1.0f && viewport.max_z >= 0.0f && viewport.max_z <= 1.0f))
+        return CallResult::fail("SetViewport: MinZ/MaxZ outside [0, 1]");
+    viewport_ = viewport;
+    return {};
+}
+
+CallResult Device::set_scissor_rect(const PixelRect& rect) {
+    if (rect.left < 0 || rect.top < 0 || rect.right < rect.left || rect.bottom < rect.top)
+        return CallResult::fail("SetScissorRect: malformed rectangle");
+    scissor_ = rect;
+    return {};
+}
+
+CallResult Device::set_clip_plane(uint32_t index, const Vec4& plane) {
+    if (index >= kMaxUserClipPlanes) return CallResult::fail("SetClipPlane: index " + std::to_string(index) + " out of range");
+    clip_planes_[index] = plane;
+    return {};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Frame
+
+CallResult Device::clear(uint32_t flags, uint32_t color, float z, uint32_t stencil) {
+    if (flags == 0 || (flags & ~(kClearTarget | kClearZBuffer | kClearStencil)) != 0)
+        return CallResult::fail("Clear: flags " + std::to_string(flags) + " are not D3DCLEAR_TARGET/ZBUFFER/STENCIL");
+    Surface* rt0 = render_target_surface(0);
+    if (!rt0) return CallResult::fail("Clear: no render target is bound");
+    DepthStencilSurface* ds = depth_stencil_ ? &*depth_stencil_->depth : nullptr;
+    if ((flags & (kClearZBuffer | kClearStencil)) && !ds)
+        return CallResult::fail("Clear: ZBUFFER/STENCIL without a depth-stencil surface");
+    if ((flags & kClearStencil) && ds->info().stencil_bits == 0)
+        return CallResult::fail("Clear: STENCIL on a depth format without stencil bits");
+    if ((flags & kClearZBuffer) && !(z >= 0.0f && z <= 1.0f)) return CallResult::fail("Clear: z outside [0, 1]");
+    PixelRect rect{static_cast<int32_t>(viewport_.x), static_cast<int32_t>(viewport_.y),
+                   static_cast<int32_t>(viewport_.x + viewport_.width),
+                   static_cast<int32_t>(viewport_.y + viewport_.height)};
+    if (render_state_.scissor_test_enable) rect = rect.intersect(scissor_);
+    if (flags & kClearTarget) {
+        const auto rgba = color_to_float4(color);
+        const Float4 value{rgba[0], rgba[1], rgba[2], rgba[3]};
+        for (unsigned i = 0; i < kMaxRenderTargets; ++i) {
+            Surface* s = render_target_surface(i);
+            if (!s) continue;
+            const PixelRect r = rect.intersect(PixelRect{0, 0, static_cast<int32_t>(s->width()), static_cast<int32_t>(s->height())});
+            if (r.empty()) continue;
+            const unsigned bytes = format_info(s->format())->bytes;
+            std::array<std::byte, 16> texel{};
+            encode_texel(s->format(), value, texel.data());
+            for (int32_t y = r.top; y < r.bottom; ++y) {
+                std::byte* row = s->bytes().data() + static_cast<size_t>(y) * s->row_pitch();
+                for (int32_t x = r.left; x < r.right; ++x)
+                    std::memcpy(row + static_cast<size_t>(x) * bytes, texel.data(), bytes);
+            }
+        }
+    }
+    if (flags & (kClearZBuffer | kClearStencil))
+        ds->clear(rect, (flags & kClearZBuffer) != 0, z, (flags & kClearStencil) != 0, stencil);
+    return {};
+}
+
+CallResult Device::begin_scene() {
+    if (in_scene_) return CallResult::fail("BeginScene: already inside BeginScene/EndScene");
+    in_scene_ = true;
+    return {};
+}
+
+CallResult Device::end_scene() {
+    if (!in_scene_) return CallResult::fail("EndScene: without BeginScene");
+    in_scene_ = false;
+    return {};
+}
+
+namespace {
+
+void write_file(const DeviceOptions& options, const Surface& surface, const std::string& path) {
+    if (options.write_image) options.write_image(surface, path);
+    else write_surface(surface, path);
+}
+
+}  // namespace
+
+CallResult Device::present() {
+    if (!back_buffer_) return CallResult::fail("Present: no device (CreateDevice) and so no back buffer");
+    if (!options_.output_dir.empty()) {
+        char file[32];
+        std::snprintf(file, sizeof file, "frame_%04u.png", frame_);
+        try {
+            write_file(options_, back_buffer_->surface, options_.output_dir + "/" + file);
+        } catch (const std::exception& e) {
+            return CallResult::fail(std::string("Present: ") + e.what());
+        }
+    }
+    ++frame_;
+    return {};
+}
+
+CallResult Device::save_surface(const std::string& name, const std::string& path) {
+    const Surface* s = surface(name);
+    if (!s) return CallResult::fail("SaveSurface: '" + name + "' is not a surface or texture");
+    std::string full = path;
+    if (!options_.output_dir.empty() && !path.empty() && path[0] != '/') full = options_.output_dir + "/" + path;
+    try {
+        write_file(options_, *s, full);
+    } catch (const std::exception& e) {
+        return CallResult::fail(std::string("SaveSurface: ") + e.what());
+    }
+    return {};
+}
+
+const Surface* Device::surface(const std::string& name) const {
+    auto r = find(name);
+    if (!r) return nullptr;
+    if (r->kind == Resource::Kind::RenderTarget) return &r->surface;
+    if (r->kind == Resource::Kind::Texture) return &r->texture.surface(0, 0);
+    return nullptr;
+}
+
+const DepthStencilSurface* Device::depth_stencil(const std::string& name) const {
+    auto r = find(name);
+    return r && r->kind == Resource::Kind::DepthStencil ? &*r->depth : nullptr;
+}
+
+}  // namespace sm2::runtime
