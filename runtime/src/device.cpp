@@ -34,6 +34,7 @@ Device::Device(DeviceOptions options) : options_(std::move(options)) {
     vs_f_.assign(kMaxVertexShaderConstantsF, {0.0f, 0.0f, 0.0f, 0.0f});
     ps_f_.assign(kMaxPixelShaderConstantsF, {0.0f, 0.0f, 0.0f, 0.0f});
     if (options_.threads == 0) options_.threads = 1;
+    sampler_.set_precision(options_.filter_precision);
 }
 
 Device::~Device() = default;

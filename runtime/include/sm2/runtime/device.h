@@ -58,6 +58,10 @@ struct DeviceOptions {
     // Tiles are processed by this many threads (1: on the calling thread). Output does not
     // depend on it.
     unsigned threads = 1;
+    // Shader arithmetic (fp32, fp24 as ps_2_0 hardware rounds, _pp as fp16; the fp64 reference
+    // is sm2 run's and is refused by draws) and the sampler's filter weights.
+    emu::PrecisionOptions precision{};
+    FilterPrecision filter_precision = FilterPrecision::Fixed8;
 };
 
 struct DrawStatistics {
@@ -128,6 +132,10 @@ public:
     CallResult end_scene();
     CallResult present();
     CallResult save_surface(const std::string& surface, const std::string& path);
+    // Copies the whole source surface (render target, or level 0 of a 2D texture) onto the whole
+    // destination render target, scaling with POINT (NONE) or LINEAR filtering and converting
+    // the format through decode_texel/encode_texel (stretch_rect.cpp).
+    CallResult stretch_rect(const std::string& source, const std::string& destination, TextureFilter filter);
 
     // Draws
     CallResult draw_primitive(uint32_t type, uint32_t start_vertex, uint32_t primitive_count);
@@ -148,6 +156,13 @@ public:
     [[nodiscard]] bool has_resource(const std::string& name) const { return resources_.count(name) != 0; }
     [[nodiscard]] uint32_t frames_presented() const { return frame_; }
     [[nodiscard]] const DrawStatistics& statistics() const { return stats_; }
+    [[nodiscard]] const SamplerState& sampler_state(uint32_t sampler) const { return sampler_states_.at(sampler); }
+    [[nodiscard]] const std::array<float, 4>& vertex_shader_constant_f(uint32_t reg) const { return vs_f_.at(reg); }
+    [[nodiscard]] const std::array<float, 4>& pixel_shader_constant_f(uint32_t reg) const { return ps_f_.at(reg); }
+    [[nodiscard]] const emu::StaticFlowConstants& vertex_shader_flow_constants() const { return vs_flow_; }
+    [[nodiscard]] const emu::StaticFlowConstants& pixel_shader_flow_constants() const { return ps_flow_; }
+    [[nodiscard]] const PixelRect& scissor_rect() const { return scissor_; }
+    [[nodiscard]] const Vec4& clip_plane(uint32_t index) const { return clip_planes_.at(index); }
 
     struct Resource;
     struct ShaderObject;

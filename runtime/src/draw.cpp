@@ -1,0 +1,417 @@
+// The draw: every stage of docs/pipeline.md "A draw with these stages", in order, with a pipeline
+// specialized for the draw's state. Checks that can refuse the draw (D3DERR_INVALIDCALL) all run
+// before the first pixel is written, so a refused draw leaves every surface as it was.
+//
+//   key      = (vs flow key, ps flow key, outputs the next stage reads)  -> lowered executables
+//   vertices = fetch + vertex shader, each distinct vertex once (post-transform cache)
+//   setups   = primitive assembly -> clipper -> setup (culling, edges, planes), in draw order
+//   tiles    = setups binned by their bounds; each tile is owned by one thread and rasterizes,
+//              interpolates, shades and merges its primitives in draw order
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "device_internal.h"
+#include "sm2/runtime/interpolation.h"
+#include "sm2/runtime/output_merger.h"
+#include "sm2/runtime/rasterizer.h"
+#include "sm2/runtime/setup.h"
+
+namespace sm2::runtime {
+
+namespace {
+
+namespace slot = emu::slot;
+
+// Output bits of emu::LoweringOptions::outputs_read (bit s - slot::kPosition).
+constexpr uint32_t output_bit(unsigned s) { return 1u << (s - slot::kPosition); }
+
+// The ps inputs a pixel shader reads, as varying bits (v0/v1 -> colours, t# -> texcoords).
+uint16_t varyings_read_by(const emu::Executable& ps) {
+    const auto& read = ps.components_read();
+    uint16_t mask = 0;
+    for (unsigned d = 0; d < 2; ++d)
+        if (read[slot::kInputFirst + d]) mask |= static_cast<uint16_t>(1u << (kVaryingColor0 + d));
+    for (unsigned t = 0; t < slot::kTexCoordCount; ++t)
+        if (read[slot::kTexCoordFirst + t]) mask |= static_cast<uint16_t>(1u << (kVaryingTexCoord0 + t));
+    return mask;
+}
+
+// The vertex shader outputs that carry the varyings in `mask`.
+uint32_t vs_outputs_for(uint16_t varyings) {
+    uint32_t outputs = output_bit(slot::kPosition);
+    for (unsigned d = 0; d < 2; ++d)
+        if (varyings >> (kVaryingColor0 + d) & 1u) outputs |= output_bit(slot::kColorOutFirst + d);
+    for (unsigned t = 0; t < slot::kTexCoordOutCount; ++t)
+        if (varyings >> (kVaryingTexCoord0 + t) & 1u) outputs |= output_bit(slot::kTexCoordOutFirst + t);
+    if (varyings >> kVaryingFog & 1u) outputs |= output_bit(slot::kFog);
+    return outputs;
+}
+
+// The pipeline cache: one lowered executable per (flow key, outputs read) of a shader.
+const emu::Executable* lowered_for(Device::ShaderObject& object, const emu::StaticFlowConstants& application,
+                                   uint32_t outputs_read, const emu::PrecisionOptions& precision,
+                                   DrawStatistics& stats, std::string& error) {
+    const emu::StaticFlowConstants key = object.shader->flow_key(application);
+    for (const auto& entry : object.lowered)
+        if (entry.flow == key && entry.outputs_read == outputs_read) return &entry.executable;
+    emu::LoweringOptions options;
+    options.precision = precision;
+    options.outputs_read = outputs_read;
+    if (object.shader->version().is_vertex()) options.constant_count = kMaxVertexShaderConstantsF;
+    auto lowered = emu::lower(*object.shader, key, options);
+    if (!lowered.executable) {
+        error = lowered.error;
+        return nullptr;
+    }
+    object.lowered.push_back({key, outputs_read, std::move(*lowered.executable)});
+    ++stats.pipelines_built;
+    return &object.lowered.back().executable;
+}
+
+// Everything the pixel part of a draw reads: built once, shared read-only by the tile threads.
+struct PixelPipeline {
+    const emu::Executable* ps = nullptr;  // null: no pixel shader (oC0 = interpolated diffuse)
+    const emu::ConstantFile* ps_constants = nullptr;
+    uint16_t ps_varyings = 0;             // what interpolation writes
+    OutputMergerState merger{};
+    RenderTargets targets{};
+    MergeInput merge_template{};
+    bool early_depth_stencil = false;
+    const TextureSampler* sampler = nullptr;
+};
+
+// One tile owner's working set.
+struct TileWorker {
+    emu::Batch batch;
+    PixelLanes lanes;
+    std::vector<Quad> quads;
+    TextureSampler sampler;
+    uint64_t pixels_shaded = 0;
+};
+
+void shade_quads(const PixelPipeline& pipe, const PrimitiveSetup& prim, std::span<const Quad> quads,
+                 TileWorker& w) {
+    interpolate(prim, quads, pipe.ps_varyings, w.batch, w.lanes);
+    emu::LaneMask live = w.lanes.coverage;
+    MergeInput input = pipe.merge_template;
+    input.batch = &w.batch;
+    input.lanes = &w.lanes;
+    if (pipe.early_depth_stencil) {
+        // The shader can change neither depth nor coverage: test first, shade only survivors.
+        live = depth_stencil_test(pipe.merger.depth_stencil, pipe.targets.depth_stencil, w.lanes.x, w.lanes.y,
+                                  w.lanes.depth, live, w.lanes.clockwise);
+        input.depth_stencil_done = true;
+        if (!live) return;
+    }
+    w.batch.killed = 0;
+    if (pipe.ps) {
+        emu::execute(*pipe.ps, *pipe.ps_constants, w.batch, &w.sampler);
+    } else {
+        // No pixel shader: D3D9's default texture stage 0 without a texture passes the diffuse
+        // colour through.
+        w.batch.render_target(0) = w.batch.input(0);
+    }
+    w.pixels_shaded += static_cast<uint64_t>(std::popcount(live));
+    input.live = live;
+    RenderTargets targets = pipe.targets;
+    (void)merge(pipe.merger, targets, input);
+}
+
+void process_tile(const PixelPipeline& pipe, std::span<const PrimitiveSetup> setups,
+                  std::span<const uint32_t> primitives, const PixelRect& region, TileWorker& w) {
+    for (uint32_t index : primitives) {
+        const PrimitiveSetup& prim = setups[index];
+        w.quads.clear();
+        rasterize(prim, region, w.quads);
+        for (size_t q = 0; q < w.quads.size(); q += emu::kBatchQuads) {
+            const size_t n = std::min<size_t>(emu::kBatchQuads, w.quads.size() - q);
+            shade_quads(pipe, prim, std::span<const Quad>(w.quads).subspan(q, n), w);
+        }
+    }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+
+CallResult Device::run_draw(uint32_t type_value, uint32_t primitive_count, std::vector<uint32_t> draw_vertices,
+                            std::span<const VertexStream> streams) {
+    const auto type = primitive_type_from(type_value);
+    if (!type) return CallResult::fail("primitive type " + std::to_string(type_value) + " is not a D3DPRIMITIVETYPE");
+    if (!in_scene_) return CallResult::fail("draw outside BeginScene/EndScene");
+    if (!declaration_) return CallResult::fail("no vertex declaration is set");
+    if (!vertex_shader_)
+        return CallResult::fail("no vertex shader is set (fixed-function vertex processing is not emulated)");
+    if (options_.precision.precision == emu::Precision::Fp64)
+        return CallResult::fail("the fp64 reference precision is for single shaders (sm2 run), not draws");
+
+    // Render targets: all bound ones must have target 0's size; the depth buffer must cover it.
+    Surface* rt0 = render_target_surface(0);
+    if (!rt0) return CallResult::fail("no render target 0");
+    RenderTargets targets;
+    for (unsigned i = 0; i < kMaxRenderTargets; ++i) {
+        targets.color[i] = render_target_surface(i);
+        if (targets.color[i] && (targets.color[i]->width() != rt0->width() || targets.color[i]->height() != rt0->height()))
+            return CallResult::fail("render target " + std::to_string(i) + " is not the size of render target 0");
+    }
+    const bool depth_in_use = render_state_.z_enable != ZBufferType::False || render_state_.stencil_enable;
+    if (depth_stencil_ && depth_in_use) {
+        DepthStencilSurface& ds = *depth_stencil_->depth;
+        if (ds.width() < rt0->width() || ds.height() < rt0->height())
+            return CallResult::fail("the depth-stencil surface is smaller than render target 0");
+        targets.depth_stencil = &ds;
+    }
+
+    const auto assembled = assemble(*type, primitive_count, static_cast<uint32_t>(draw_vertices.size()));
+    if (!assembled.ok()) return CallResult::fail(assembled.error);
+
+    // Pipeline: the pixel shader first, since what it reads decides what the vertex shader
+    // must compute.
+    ShaderObject& vs_object = *vertex_shader_->shader;
+    ShaderObject* ps_object = pixel_shader_ ? pixel_shader_->shader.get() : nullptr;
+    std::string error;
+    OutputMergerState merger = output_merger_state(render_state_);
+    if (!targets.depth_stencil) merger.depth_stencil.depth_enable = merger.depth_stencil.stencil_enable = false;
+    if (targets.depth_stencil && targets.depth_stencil->info().stencil_bits == 0) merger.depth_stencil.stencil_enable = false;
+    uint32_t ps_outputs = 0;
+    for (unsigned i = 0; i < kMaxRenderTargets; ++i)
+        if (targets.color[i] && (merger.write_mask[i] & 0xF)) ps_outputs |= output_bit(slot::kRenderTargetFirst + i);
+    ps_outputs |= output_bit(slot::kDepth);
+    const emu::Executable* ps = nullptr;
+    if (ps_object) {
+        ps = lowered_for(*ps_object, ps_flow_, ps_outputs, options_.precision, stats_, error);
+        if (!ps) return CallResult::fail("pixel shader: " + error);
+    }
+    uint16_t varyings = ps ? varyings_read_by(*ps) : static_cast<uint16_t>(1u << kVaryingColor0);
+    if (merger.fog_enable && merger.fog_table_mode == FogMode::None) varyings |= 1u << kVaryingFog;
+    const bool points = *type == PrimitiveType::PointList ||
+                        (render_state_.fill_mode == FillMode::Point && *type >= PrimitiveType::TriangleList);
+    uint32_t vs_outputs = vs_outputs_for(varyings);
+    if (points) vs_outputs |= output_bit(slot::kPointSize);
+    const emu::Executable* vs = lowered_for(vs_object, vs_flow_, vs_outputs, options_.precision, stats_, error);
+    if (!vs) return CallResult::fail("vertex shader: " + error);
+
+    // Vertex stage: fetch and shade each distinct vertex once.
+    const auto plan = plan_fetch(declaration_->elements, vs_object.inputs);
+    if (!plan.plan) return CallResult::fail("vertex declaration: " + plan.error);
+    for (unsigned s = 0; s < kMaxVertexStreams; ++s)
+        if ((plan.plan->streams_used >> s & 1u) && (s >= streams.size() || streams[s].stride == 0))
+            return CallResult::fail("stream " + std::to_string(s) + " is read by the declaration but not set");
+    const UniqueVertices unique = deduplicate(draw_vertices);
+    const emu::ConstantFile vs_constants = vs->bind_constants(vs_f_);
+    const bool writes_point_size = (vs->components_written()[slot::kPointSize] & 1u) != 0;
+    std::vector<ClipVertex> shaded(unique.vertices.size());
+    {
+        emu::Batch batch;
+        for (size_t first = 0; first < unique.vertices.size(); first += emu::kBatchLanes) {
+            const size_t n = std::min<size_t>(emu::kBatchLanes, unique.vertices.size() - first);
+            batch.reset();
+            const std::string fetch_error =
+                fetch(*plan.plan, streams, std::span<const uint32_t>(unique.vertices).subspan(first, n), batch);
+            if (!fetch_error.empty()) return CallResult::fail("vertex fetch: " + fetch_error);
+            emu::execute(*vs, vs_constants, batch, nullptr);
+            for (size_t l = 0; l < n; ++l)
+                shaded[first + l] = vertex_from_batch(batch, static_cast<unsigned>(l), writes_point_size);
+        }
+    }
+
+    // Clipping and setup, in draw order.
+    ClipState clip;
+    clip.clipping = render_state_.clipping;
+    clip.user_plane_enable = render_state_.clip_plane_enable & 0x3Fu;
+    clip.user_planes = clip_planes_;
+    clip.guard = guard_band(viewport_);
+    clip.varying_mask = varyings;
+    SetupState setup_state = make_setup_state(render_state_, viewport_, rt0->width(), rt0->height(), scissor_);
+    setup_state.varying_mask = varyings;
+    setup_state.shader_point_size = writes_point_size;
+    std::vector<PrimitiveSetup> setups;
+    setups.reserve(assembled.primitives.size());
+    ClippedPolygon polygon;
+    for (const Primitive& p : assembled.primitives) {
+        const ClipVertex& v0 = shaded[unique.slots[p.v[0]]];
+        const ClipVertex& provoking = shaded[unique.slots[p.provoking]];
+        PrimitiveSetup s;
+        if (*type == PrimitiveType::PointList) {
+            if (point_visible(v0, clip) && setup_point(v0, setup_state, s)) setups.push_back(s);
+            continue;
+        }
+        const ClipVertex& v1 = shaded[unique.slots[p.v[1]]];
+        if (*type == PrimitiveType::LineList || *type == PrimitiveType::LineStrip) {
+            std::array<ClipVertex, 2> ends;
+            if (clip_line(v0, v1, clip, ends) != ClipResult::Outside && setup_line(ends[0], ends[1], provoking, setup_state, s))
+                setups.push_back(s);
+            continue;
+        }
+        const ClipVertex& v2 = shaded[unique.slots[p.v[2]]];
+        const ClipResult result = clip_triangle(v0, v1, v2, clip, polygon);
+        if (result == ClipResult::Outside) continue;
+        if (render_state_.fill_mode != FillMode::Solid) {
+            const std::array<ClipVertex, 3> triangle{v0, v1, v2};
+            const std::span<const ClipVertex> vertices =
+                result == ClipResult::Inside ? std::span<const ClipVertex>(triangle)
+                                             : std::span<const ClipVertex>(polygon.vertices.data(), polygon.count);
+            (void)setup_fill_mode(vertices, provoking, render_state_.fill_mode, setup_state, setups);
+            continue;
+        }
+        if (result == ClipResult::Inside) {
+            if (setup_triangle(v0, v1, v2, provoking, setup_state, s)) setups.push_back(s);
+            continue;
+        }
+        for (unsigned i = 1; i + 1 < polygon.count; ++i)
+            if (setup_triangle(polygon.vertices[0], polygon.vertices[i], polygon.vertices[i + 1], provoking, setup_state, s))
+                setups.push_back(s);
+    }
+
+    // Pixel pipeline for this draw.
+    PixelPipeline pipe;
+    pipe.ps = ps;
+    emu::ConstantFile ps_constants;
+    if (ps) {
+        ps_constants = ps->bind_constants(ps_f_);
+        pipe.ps_constants = &ps_constants;
+    }
+    pipe.ps_varyings = varyings;
+    pipe.merger = merger;
+    pipe.targets = targets;
+    const auto& written = ps ? ps->components_written() : std::array<uint8_t, emu::kSlotCount>{};
+    pipe.merge_template.color_outputs = ps ? 0 : 1;
+    if (ps)
+        for (unsigned i = 0; i < kMaxRenderTargets; ++i)
+            if (written[slot::kRenderTargetFirst + i]) pipe.merge_template.color_outputs |= static_cast<uint8_t>(1u << i);
+    pipe.merge_template.shader_depth = ps && written[slot::kDepth] != 0;
+    const bool kills = ps_object && ps_object->texkill;
+    pipe.early_depth_stencil = merger.depth_stencil.active() && !pipe.merge_template.shader_depth && !kills &&
+                               !merger.alpha_test;
+
+    // Bin by tile, keeping draw order inside each tile.
+    const int32_t tiles_x = static_cast<int32_t>((rt0->width() + kTileSize - 1) / kTileSize);
+    const int32_t tiles_y = static_cast<int32_t>((rt0->height() + kTileSize - 1) / kTileSize);
+    std::vector<std::vector<uint32_t>> bins(static_cast<size_t>(tiles_x) * static_cast<size_t>(tiles_y));
+    for (uint32_t i = 0; i < setups.size(); ++i) {
+        const PixelRect& b = setups[i].bounds;
+        if (b.empty()) continue;
+        const int32_t tx0 = std::max(0, b.left / kTileSize), tx1 = std::min(tiles_x - 1, (b.right - 1) / kTileSize);
+        const int32_t ty0 = std::max(0, b.top / kTileSize), ty1 = std::min(tiles_y - 1, (b.bottom - 1) / kTileSize);
+        for (int32_t ty = ty0; ty <= ty1; ++ty)
+            for (int32_t tx = tx0; tx <= tx1; ++tx) bins[static_cast<size_t>(ty) * tiles_x + tx].push_back(i);
+    }
+    std::vector<size_t> busy;
+    for (size_t t = 0; t < bins.size(); ++t)
+        if (!bins[t].empty()) busy.push_back(t);
+
+    // Tiles are independent (disjoint pixels): any number of threads gives the same bytes.
+    const unsigned thread_count =
+        static_cast<unsigned>(std::clamp<size_t>(options_.threads, 1, std::max<size_t>(busy.size(), 1)));
+    std::vector<TileWorker> workers(thread_count);
+    for (auto& w : workers) w.sampler = sampler_;
+    std::atomic<size_t> next{0};
+    auto work = [&](TileWorker& w) {
+        for (size_t k = next.fetch_add(1); k < busy.size(); k = next.fetch_add(1)) {
+            const size_t t = busy[k];
+            const int32_t tx = static_cast<int32_t>(t % static_cast<size_t>(tiles_x));
+            const int32_t ty = static_cast<int32_t>(t / static_cast<size_t>(tiles_x));
+            process_tile(pipe, setups, bins[t], tile_rect(tx, ty), w);
+        }
+    };
+    if (thread_count == 1) {
+        work(workers[0]);
+    } else {
+        std::vector<std::jthread> threads;
+        threads.reserve(thread_count - 1);
+        for (unsigned i = 1; i < thread_count; ++i) threads.emplace_back(work, std::ref(workers[i]));
+        work(workers[0]);
+    }
+
+    ++stats_.draws;
+    stats_.vertices_shaded += unique.vertices.size();
+    stats_.primitives += assembled.primitives.size();
+    for (const auto& w : workers) stats_.pixels_shaded += w.pixels_shaded;
+    return {};
+}
+
+// ---------------------------------------------------------------------------------------------
+// The four draw calls: they differ only in where the vertex numbers and streams come from.
+
+namespace {
+
+std::string draw_error(const char* call, const CallResult& result) { return std::string(call) + ": " + result.error; }
+
+}  // namespace
+
+CallResult Device::draw_primitive(uint32_t type, uint32_t start_vertex, uint32_t primitive_count) {
+    const auto pt = primitive_type_from(type);
+    const auto count = pt ? vertices_for(*pt, primitive_count) : std::nullopt;
+    if (!count) return CallResult::fail("DrawPrimitive: bad primitive type or count");
+    auto ids = sequential_vertices(start_vertex, *count);
+    if (!ids.ok()) return CallResult::fail("DrawPrimitive: " + ids.error);
+    std::vector<VertexStream> streams(kMaxVertexStreams);
+    for (unsigned s = 0; s < kMaxVertexStreams; ++s)
+        if (streams_[s].buffer) streams[s] = VertexStream{streams_[s].buffer->bytes, streams_[s].offset, streams_[s].stride};
+    auto result = run_draw(type, primitive_count, std::move(ids.vertices), streams);
+    return result ? result : CallResult::fail(draw_error("DrawPrimitive", result));
+}
+
+CallResult Device::draw_indexed_primitive(uint32_t type, int32_t base_vertex, uint32_t /*min_index: a hint*/,
+                                          uint32_t num_vertices, uint32_t start_index, uint32_t primitive_count) {
+    const auto pt = primitive_type_from(type);
+    const auto count = pt ? vertices_for(*pt, primitive_count) : std::nullopt;
+    if (!count) return CallResult::fail("DrawIndexedPrimitive: bad primitive type or count");
+    if (num_vertices == 0) return CallResult::fail("DrawIndexedPrimitive: NumVertices is 0");
+    if (!indices_) return CallResult::fail("DrawIndexedPrimitive: no index buffer is set");
+    auto ids = read_indices(indices_->bytes, indices_->index_format, start_index, *count, base_vertex);
+    if (!ids.ok()) return CallResult::fail("DrawIndexedPrimitive: " + ids.error);
+    std::vector<VertexStream> streams(kMaxVertexStreams);
+    for (unsigned s = 0; s < kMaxVertexStreams; ++s)
+        if (streams_[s].buffer) streams[s] = VertexStream{streams_[s].buffer->bytes, streams_[s].offset, streams_[s].stride};
+    auto result = run_draw(type, primitive_count, std::move(ids.vertices), streams);
+    return result ? result : CallResult::fail(draw_error("DrawIndexedPrimitive", result));
+}
+
+CallResult Device::draw_primitive_up(uint32_t type, uint32_t primitive_count, std::span<const std::byte> vertices,
+                                     uint32_t stride) {
+    const auto pt = primitive_type_from(type);
+    const auto count = pt ? vertices_for(*pt, primitive_count) : std::nullopt;
+    if (!count) return CallResult::fail("DrawPrimitiveUP: bad primitive type or count");
+    if (stride == 0) return CallResult::fail("DrawPrimitiveUP: stride 0");
+    auto ids = sequential_vertices(0, *count);
+    if (!ids.ok()) return CallResult::fail("DrawPrimitiveUP: " + ids.error);
+    std::vector<VertexStream> streams(kMaxVertexStreams);
+    streams[0] = VertexStream{vertices, 0, stride};
+    auto result = run_draw(type, primitive_count, std::move(ids.vertices), streams);
+    if (!result) return CallResult::fail(draw_error("DrawPrimitiveUP", result));
+    // D3D9: after a UP draw, stream 0 is unset.
+    streams_[0] = StreamBinding{};
+    return {};
+}
+
+CallResult Device::draw_indexed_primitive_up(uint32_t type, uint32_t /*min_index*/, uint32_t num_vertices,
+                                             uint32_t primitive_count, std::span<const std::byte> indices,
+                                             Format index_format, std::span<const std::byte> vertices,
+                                             uint32_t stride) {
+    const auto pt = primitive_type_from(type);
+    const auto count = pt ? vertices_for(*pt, primitive_count) : std::nullopt;
+    if (!count) return CallResult::fail("DrawIndexedPrimitiveUP: bad primitive type or count");
+    if (stride == 0) return CallResult::fail("DrawIndexedPrimitiveUP: stride 0");
+    if (num_vertices == 0) return CallResult::fail("DrawIndexedPrimitiveUP: NumVertices is 0");
+    if (index_format != Format::INDEX16 && index_format != Format::INDEX32)
+        return CallResult::fail("DrawIndexedPrimitiveUP: the index format is not INDEX16 or INDEX32");
+    auto ids = read_indices(indices, index_format == Format::INDEX16 ? IndexFormat::Index16 : IndexFormat::Index32, 0,
+                            *count, 0);
+    if (!ids.ok()) return CallResult::fail("DrawIndexedPrimitiveUP: " + ids.error);
+    std::vector<VertexStream> streams(kMaxVertexStreams);
+    streams[0] = VertexStream{vertices, 0, stride};
+    auto result = run_draw(type, primitive_count, std::move(ids.vertices), streams);
+    if (!result) return CallResult::fail(draw_error("DrawIndexedPrimitiveUP", result));
+    // D3D9: after a UP draw, stream 0 and the index buffer are unset.
+    streams_[0] = StreamBinding{};
+    indices_ = nullptr;
+    return {};
+}
+
+}  // namespace sm2::runtime
