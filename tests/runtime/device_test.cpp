@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -294,6 +295,71 @@ TEST_F(DeviceTest, RefusedDrawsChangeNothing) {
     ASSERT_TRUE(device->begin_scene());
     EXPECT_TRUE(draw(kTriangleList, 1, tri));
     EXPECT_EQ(count_pixels(0xFFFF0000u), 36u);
+}
+
+// Texturing through the whole pipeline: the LOD comes from the 2x2 quads the rasterizer makes.
+// A full-screen quad maps u, v from 0 to 1 over 8 pixels, so a 32-texel texture steps 4 texels
+// per pixel: lambda = log2(4) = 2. Each mip level is one solid colour; MIPFILTER POINT picks
+// level 2 (blue). MIPMAPLODBIAS -1 gives level 1 (green); MAXMIPLEVEL 3 clamps to level 3 (white).
+TEST_F(DeviceTest, MipLevelFromQuadDerivatives) {
+    const std::array<uint32_t, 6> level_colors{0xFFFF0000u, 0xFF00FF00u, 0xFF0000FFu, 0xFFFFFFFFu, 0xFF808080u, 0xFF000000u};
+    auto run = [&](uint32_t state, uint32_t value) {
+        make();
+        EXPECT_TRUE(device->create_texture("tex", 32, 32, 0, Format::A8R8G8B8));
+        for (uint32_t level = 0; level < 6; ++level) {
+            const uint32_t edge = 32u >> level;
+            std::vector<uint32_t> texels(edge * edge, level_colors[level]);
+            EXPECT_TRUE(device->lock_rect("tex", 0, level, std::as_bytes(std::span(texels))));
+        }
+        EXPECT_TRUE(device->create_pixel_shader(
+            "ps_tex", program("ps_2_0\ndcl t0.xy\ndcl_2d s0\ntexld r0, t0, s0\nmov oC0, r0\n")));
+        EXPECT_TRUE(device->set_pixel_shader("ps_tex"));
+        EXPECT_TRUE(device->set_texture(0, "tex"));
+        for (uint32_t f : {5u, 6u, 7u}) EXPECT_TRUE(device->set_sampler_state(0, f, 1));  // MAG/MIN/MIP POINT
+        if (state) {
+            EXPECT_TRUE(device->set_sampler_state(0, state, value));
+        }
+        EXPECT_TRUE(draw(kTriangleStrip, 2, {{-1, 1, 0, 1, 0, 0, 0, 1}, {1, 1, 0, 1, 1, 0, 0, 1},
+                                             {-1, -1, 0, 1, 0, 1, 0, 1}, {1, -1, 0, 1, 1, 1, 0, 1}}));
+    };
+    run(0, 0);
+    EXPECT_EQ(count_pixels(0xFF0000FFu), 64u);
+    float minus_one = -1.0f;
+    uint32_t bias_bits = 0;
+    std::memcpy(&bias_bits, &minus_one, 4);
+    run(8, bias_bits);  // MIPMAPLODBIAS
+    EXPECT_EQ(count_pixels(0xFF00FF00u), 64u);
+    run(9, 3);  // MAXMIPLEVEL
+    EXPECT_EQ(count_pixels(0xFFFFFFFFu), 64u);
+}
+
+// Extreme input through the whole pipeline: huge, tiny, infinite and NaN coordinates, w near
+// and below 0, slivers. Nothing crashes, every draw is accepted, and no pixel outside the
+// viewport [2, 6) x [3, 7) is ever touched.
+TEST_F(DeviceTest, ExtremeCoordinatesStayInsideTheViewport) {
+    make(10, 10, Format::D24S8);
+    ASSERT_TRUE(device->set_viewport(Viewport{2, 3, 4, 4, 0.0f, 1.0f}));
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    const std::array<float, 16> values{0.0f, -0.0f, 1.0f, -1.0f, 1e-30f, -1e-30f, 1e30f, -1e30f, inf, -inf, nan,
+                                       1e-45f, 3.4e38f, 0.999f, 2.0f, -7.5f};
+    uint32_t seed = 12345;
+    auto pick = [&] {
+        seed = seed * 1664525u + 1013904223u;
+        return values[(seed >> 16) % values.size()];
+    };
+    std::vector<Vertex> tris;
+    for (int i = 0; i < 3 * 400; ++i) tris.push_back({pick(), pick(), pick(), pick(), pick(), pick(), pick(), 1});
+    for (uint32_t clipping : {1u, 0u}) {
+        ASSERT_TRUE(device->set_render_state(rs(RenderStateType::Clipping), clipping));
+        ASSERT_TRUE(draw(kTriangleList, 400, tris));
+        ASSERT_TRUE(draw(kPointList, 1200, tris));
+        ASSERT_TRUE(draw(2 /* LINELIST */, 600, tris));
+    }
+    for (uint32_t y = 0; y < 10; ++y)
+        for (uint32_t x = 0; x < 10; ++x)
+            if (x < 2 || x >= 6 || y < 3 || y >= 7) {
+                ASSERT_EQ(pixel(x, y), 0xFF000000u) << x << "," << y;
+            }
 }
 
 // Tiles are processed by any number of threads with identical bytes: a 100x70 target (4 x 3
