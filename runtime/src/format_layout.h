@@ -14,9 +14,6 @@
 
 namespace sm2::runtime {
 
-using TexelDecoder = Float4 (*)(const std::byte* texel);
-// nullptr for formats without a texel layout (DXTn, D24FS8, Unknown).
-[[nodiscard]] TexelDecoder texel_decoder(Format format);
 // 256 entries: srgb_to_linear(i / 255).
 [[nodiscard]] const std::array<float, 256>& srgb_to_linear_table();
 

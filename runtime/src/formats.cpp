@@ -94,6 +94,45 @@ Float4 decode_fn(const std::byte* texel) {
     return layout::decode<F>(texel);
 }
 
+// Whether every stored channel is an 8-bit UNORM on a byte boundary, each in its own byte
+// (A8R8G8B8, X8R8G8B8, A8B8G8R8, A8, ...): the render-target formats a frame is written in.
+constexpr bool bytewise_unorm8(const layout::Layout& lay) {
+    unsigned used = 0;
+    for (const auto& c : lay.rgba) {
+        if (c.type == layout::Type::Zero || c.type == layout::Type::One) continue;
+        if (c.type != layout::Type::Unorm || c.bits != 8 || c.shift % 8 != 0 || c.shift >= 32) return false;
+        if (used >> (c.shift / 8) & 1u) return false;  // luminance: one byte feeds several channels
+        used |= 1u << (c.shift / 8);
+    }
+    return true;
+}
+
+// The layout is a constant here, so each format gets its own encoder; the bytewise 8-bit ones
+// take a direct path with the same rounding as layout::encode (round(clamp(v) * 255), halves up,
+// NaN -> 0, in double).
+template <size_t I>
+void encode_fn(const Float4& value, std::byte* texel) {
+    constexpr layout::Layout Lay = layout::layout_of(kFormats[I].format);
+    constexpr unsigned kBytes = kFormats[I].bytes;
+    if constexpr (bytewise_unorm8(Lay) && kBytes <= 4) {
+        uint32_t packed = 0;
+        for (unsigned i = 0; i < 4; ++i) {
+            if (Lay.rgba[i].type != layout::Type::Unorm) continue;
+            const double scaled = static_cast<double>(value[i]) * 255.0;
+            const double clamped = !(scaled > 0.0) ? 0.0 : scaled > 255.0 ? 255.0 : scaled;
+            packed |= layout::round_to_uint(clamped) << Lay.rgba[i].shift;
+        }
+        std::memcpy(texel, &packed, kBytes);  // little-endian, as the layouts are
+    } else {
+        layout::encode(Lay, kBytes, value, texel);
+    }
+}
+
+template <size_t... Is>
+constexpr std::array<TexelEncoder, sizeof...(Is)> make_encoders(std::index_sequence<Is...>) {
+    return {(layout::layout_of(kFormats[Is].format).valid ? &encode_fn<Is> : nullptr)...};
+}
+
 template <size_t... Is>
 constexpr std::array<TexelDecoder, sizeof...(Is)> make_decoders(std::index_sequence<Is...>) {
     return {(layout::layout_of(kFormats[Is].format).valid ? &decode_fn<kFormats[Is].format> : nullptr)...};
@@ -101,6 +140,7 @@ constexpr std::array<TexelDecoder, sizeof...(Is)> make_decoders(std::index_seque
 
 constexpr size_t kFormatCount = std::size(kFormats);
 constexpr auto kDecoders = make_decoders(std::make_index_sequence<kFormatCount>{});
+constexpr auto kEncoders = make_encoders(std::make_index_sequence<kFormatCount>{});
 
 size_t table_index(Format format) {
     for (size_t i = 0; i < kFormatCount; ++i)
@@ -140,11 +180,15 @@ Float4 decode_texel(Format format, const std::byte* texel) {
     return decoder(texel);
 }
 
+TexelEncoder texel_encoder(Format format) {
+    const size_t i = table_index(format);
+    return i < kFormatCount ? kEncoders[i] : nullptr;
+}
+
 void encode_texel(Format format, const Float4& value, std::byte* texel) {
-    const layout::Layout l = layout::layout_of(format);
-    const FormatInfo* info = format_info(format);
-    if (!l.valid || info == nullptr) unsupported("encode_texel", format);
-    layout::encode(l, info->bytes, value, texel);
+    const TexelEncoder encoder = texel_encoder(format);
+    if (encoder == nullptr) unsupported("encode_texel", format);
+    encoder(value, texel);
 }
 
 void decode_block(Format format, const std::byte* block, std::array<Float4, 16>& texels) {

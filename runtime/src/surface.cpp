@@ -26,6 +26,9 @@ Surface::Surface(Format format, uint32_t width, uint32_t height, uint32_t depth)
         row_pitch_ = size_t{width} * info->bytes;
         slice_pitch_ = row_pitch_ * height;
     }
+    texel_bytes_ = info->bytes;
+    decoder_ = texel_decoder(format);
+    encoder_ = texel_encoder(format);
     data_.assign(slice_pitch_ * depth, std::byte{0});
 }
 
@@ -36,15 +39,15 @@ Float4 Surface::read(uint32_t x, uint32_t y, uint32_t z) const {
         const std::byte* block = slice + (y / 4) * row_pitch_ + (x / 4) * dxt::block_bytes(format_);
         return dxt::to_float(dxt::decode_texel(format_, block, x % 4, y % 4));
     }
-    const FormatInfo* info = format_info(format_);
-    return decode_texel(format_, slice + y * row_pitch_ + size_t{x} * info->bytes);
+    if (decoder_ == nullptr) return decode_texel(format_, slice);  // throws: no texel layout
+    return decoder_(slice + y * row_pitch_ + size_t{x} * texel_bytes_);
 }
 
 void Surface::write(uint32_t x, uint32_t y, uint32_t z, const Float4& value) {
     if (x >= width_ || y >= height_ || z >= depth_) throw std::out_of_range("Surface::write: texel outside the surface");
     if (dxt::is_dxt(format_)) throw std::invalid_argument("Surface::write: compressed formats are written as blocks");
-    const FormatInfo* info = format_info(format_);
-    encode_texel(format_, value, data_.data() + z * slice_pitch_ + y * row_pitch_ + size_t{x} * info->bytes);
+    if (encoder_ == nullptr) return encode_texel(format_, value, data_.data());  // throws: no texel layout
+    encoder_(value, data_.data() + z * slice_pitch_ + y * row_pitch_ + size_t{x} * texel_bytes_);
 }
 
 void Surface::fill(const Float4& value) {

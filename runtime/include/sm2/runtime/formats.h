@@ -63,6 +63,14 @@ struct FormatInfo {
 // "A8R8G8B8" or "D3DFMT_A8R8G8B8"; nullptr if unknown.
 [[nodiscard]] const FormatInfo* find_format(std::string_view name);
 
+// A format's texel conversions as plain functions, for loops over many texels of one format
+// (nullptr for formats without a texel layout: DXTn, D24FS8, Unknown). Same results as
+// decode_texel / encode_texel.
+using TexelDecoder = Float4 (*)(const std::byte* texel);
+using TexelEncoder = void (*)(const Float4& value, std::byte* texel);
+[[nodiscard]] TexelDecoder texel_decoder(Format format);
+[[nodiscard]] TexelEncoder texel_encoder(Format format);
+
 // One texel of an uncompressed colour format -> the value a sampler returns, with the missing
 // channels filled per §14.7 (L8 -> (l,l,l,1), A8 -> (0,0,0,a), R32F -> (r,1,1,1), ...).
 [[nodiscard]] Float4 decode_texel(Format format, const std::byte* texel);

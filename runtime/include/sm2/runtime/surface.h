@@ -36,6 +36,9 @@ private:
     Format format_ = Format::Unknown;
     uint32_t width_ = 0, height_ = 0, depth_ = 0;
     size_t row_pitch_ = 0, slice_pitch_ = 0;
+    unsigned texel_bytes_ = 0;
+    TexelDecoder decoder_ = nullptr;  // looked up once: read/write run per pixel
+    TexelEncoder encoder_ = nullptr;
     std::vector<std::byte> data_;
 };
 
