@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
+#include <chrono>
 #include <string>
 #include <thread>
 #include <utility>
@@ -26,6 +27,14 @@ namespace sm2::runtime {
 namespace {
 
 namespace slot = emu::slot;
+
+// Seconds since `start`, and restarts the clock (the per-stage figures of DrawStatistics).
+double lap(std::chrono::steady_clock::time_point& start) {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - start).count();
+    start = now;
+    return seconds;
+}
 
 // Output bits of emu::LoweringOptions::outputs_read (bit s - slot::kPosition).
 constexpr uint32_t output_bit(unsigned s) { return 1u << (s - slot::kPosition); }
@@ -170,6 +179,7 @@ CallResult Device::run_draw(uint32_t type_value, uint32_t primitive_count, std::
     const auto assembled = assemble(*type, primitive_count, static_cast<uint32_t>(draw_vertices.size()));
     if (!assembled.ok()) return CallResult::fail(assembled.error);
 
+    auto clock = std::chrono::steady_clock::now();
     // Pipeline: the pixel shader first, since what it reads decides what the vertex shader
     // must compute.
     ShaderObject& vs_object = *vertex_shader_->shader;
@@ -196,6 +206,8 @@ CallResult Device::run_draw(uint32_t type_value, uint32_t primitive_count, std::
     const emu::Executable* vs = lowered_for(vs_object, vs_flow_, vs_outputs, options_.precision, stats_, error);
     if (!vs) return CallResult::fail("vertex shader: " + error);
 
+    stats_.pipeline_seconds += lap(clock);
+
     // Vertex stage: fetch and shade each distinct vertex once.
     const auto plan = plan_fetch(declaration_->elements, vs_object.inputs);
     if (!plan.plan) return CallResult::fail("vertex declaration: " + plan.error);
@@ -219,6 +231,8 @@ CallResult Device::run_draw(uint32_t type_value, uint32_t primitive_count, std::
                 shaded[first + l] = vertex_from_batch(batch, static_cast<unsigned>(l), writes_point_size);
         }
     }
+
+    stats_.vertex_seconds += lap(clock);
 
     // Clipping and setup, in draw order.
     ClipState clip;
@@ -305,6 +319,8 @@ CallResult Device::run_draw(uint32_t type_value, uint32_t primitive_count, std::
     for (size_t t = 0; t < bins.size(); ++t)
         if (!bins[t].empty()) busy.push_back(t);
 
+    stats_.setup_seconds += lap(clock);
+
     // Tiles are independent (disjoint pixels): any number of threads gives the same bytes.
     const unsigned thread_count =
         static_cast<unsigned>(std::clamp<size_t>(options_.threads, 1, std::max<size_t>(busy.size(), 1)));
@@ -328,6 +344,7 @@ CallResult Device::run_draw(uint32_t type_value, uint32_t primitive_count, std::
         work(workers[0]);
     }
 
+    stats_.pixel_seconds += lap(clock);
     ++stats_.draws;
     stats_.vertices_shaded += unique.vertices.size();
     stats_.primitives += assembled.primitives.size();

@@ -67,6 +67,10 @@ struct DeviceOptions {
 struct DrawStatistics {
     uint64_t draws = 0, vertices_shaded = 0, primitives = 0, pixels_shaded = 0;
     uint64_t pipelines_built = 0;
+    // Wall time per stage, summed over draws (seconds): building pipelines (lowering), vertex
+    // fetch and shading, primitive assembly + clipping + setup + binning, and the tile work
+    // (rasterization, interpolation, pixel shading, output merger; all threads together).
+    double pipeline_seconds = 0, vertex_seconds = 0, setup_seconds = 0, pixel_seconds = 0;
 };
 
 class Device {
