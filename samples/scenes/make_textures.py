@@ -226,12 +226,13 @@ CUBE_COLOURS = [(230, 60, 50), (60, 200, 220), (70, 200, 60), (200, 70, 200), (6
 
 def cube_face(face, edge):
     """A face: its colour, darkened towards the edges along u (x) and brightened along v, with
-    a black grid line every 8 texels so the reflection shows the distortion."""
+    a dark grid line every 8 texels (texels 7, 15, 23, 31) so the reflection shows the
+    distortion."""
     base = CUBE_COLOURS[face]
     out = b""
     for y in range(edge):
         for x in range(edge):
-            if x % 8 == 0 or y % 8 == 0:
+            if x % 8 == 7 or y % 8 == 7:
                 out += argb(255, 20, 20, 20)
                 continue
             k = 0.55 + 0.45 * (x + 0.5) / edge
