@@ -283,7 +283,6 @@ def main():
     files = {}
     files.update(scene02())
     files["sphere.vb"], files["sphere.ib"] = sphere(32, 16)
-    files["sphere_coarse.vb"], files["sphere_coarse.ib"] = sphere(12, 6)
     files["cylinder.vb"], files["cylinder.ib"] = cylinder(24, 16)
     files["lake.vb"], files["lake.ib"] = grid(48, 8.0)
     files["slices.vb"] = slices(64)
