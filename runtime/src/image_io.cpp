@@ -1,0 +1,209 @@
+// Surfaces -> image files, image files -> float RGBA, and image comparison (sm2 diff).
+// PNG, TGA and EXR go through OpenImageIO; .raw (float RGBA, no header) is written here.
+#include "sm2/runtime/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+namespace sm2::runtime {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& why) { throw ImageIoError(path + ": " + why); }
+
+enum class FileKind { Png, Tga, Exr, Raw, Other };
+
+FileKind file_kind(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); });
+    if (ext == ".png") return FileKind::Png;
+    if (ext == ".tga") return FileKind::Tga;
+    if (ext == ".exr") return FileKind::Exr;
+    if (ext == ".raw") return FileKind::Raw;
+    return FileKind::Other;
+}
+
+void check_image(const Image& image, const std::string& what) {
+    if (image.rgba.size() != size_t{image.width} * image.height * 4)
+        throw ImageIoError(what + ": pixel data does not match " + std::to_string(image.width) + "x" +
+                           std::to_string(image.height) + " RGBA");
+}
+
+// 8-bit storage: clamped to [0,1], round(v * 255); NaN stores 0.
+uint8_t to_unorm8(float v) {
+    if (!(v > 0.0f)) return 0;
+    if (v >= 1.0f) return 255;
+    return static_cast<uint8_t>(std::lround(static_cast<double>(v) * 255.0));
+}
+
+void write_raw(const Image& image, const std::string& path) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (!out) fail(path, "cannot open for writing");
+    std::vector<char> bytes(image.rgba.size() * 4);
+    for (size_t i = 0; i < image.rgba.size(); ++i) {
+        uint32_t bits = std::bit_cast<uint32_t>(image.rgba[i]);
+        for (size_t b = 0; b < 4; ++b) bytes[i * 4 + b] = static_cast<char>((bits >> (8 * b)) & 0xFF);  // little-endian
+    }
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out.close();
+    if (!out) fail(path, "write failed");
+}
+
+void write_oiio(const Image& image, const std::string& path, bool eight_bit) {
+    auto output = OIIO::ImageOutput::create(path);
+    if (!output) fail(path, "no writer for this file: " + OIIO::geterror());
+    const OIIO::TypeDesc type = eight_bit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
+    OIIO::ImageSpec spec(static_cast<int>(image.width), static_cast<int>(image.height), 4, type);
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // store the values as given, no premultiplication
+    if (!output->open(path, spec)) fail(path, "cannot open for writing: " + output->geterror());
+    bool ok;
+    if (eight_bit) {
+        std::vector<uint8_t> bytes(image.rgba.size());
+        std::transform(image.rgba.begin(), image.rgba.end(), bytes.begin(), to_unorm8);
+        ok = output->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+    } else {
+        ok = output->write_image(OIIO::TypeDesc::FLOAT, image.rgba.data());
+    }
+    if (!ok) fail(path, "write failed: " + output->geterror());
+    if (!output->close()) fail(path, "write failed: " + output->geterror());
+}
+
+// |a - b| of one channel: 0 when equal (infinities of one sign, or both NaN), infinity when one
+// side is NaN or infinite and the other is not.
+double channel_error(float a, float b) {
+    if (a == b || (std::isnan(a) && std::isnan(b))) return 0.0;
+    const double d = std::fabs(static_cast<double>(a) - static_cast<double>(b));
+    return std::isnan(d) ? std::numeric_limits<double>::infinity() : d;
+}
+
+void check_same_size(const Image& a, const Image& b) {
+    check_image(a, "first image");
+    check_image(b, "second image");
+    if (a.width != b.width || a.height != b.height)
+        throw ImageIoError("image sizes differ: " + std::to_string(a.width) + "x" + std::to_string(a.height) +
+                           " and " + std::to_string(b.width) + "x" + std::to_string(b.height));
+}
+
+}  // namespace
+
+void write_image(const Image& image, const std::string& path) {
+    check_image(image, path);
+    if (image.width == 0 || image.height == 0) fail(path, "empty image");
+    switch (file_kind(path)) {
+    case FileKind::Png:
+    case FileKind::Tga: write_oiio(image, path, true); return;
+    case FileKind::Exr: write_oiio(image, path, false); return;
+    case FileKind::Raw: write_raw(image, path); return;
+    case FileKind::Other: break;
+    }
+    fail(path, "unknown image file extension (expected .png, .tga, .exr or .raw)");
+}
+
+void write_surface(const Surface& surface, const std::string& path) {
+    if (surface.width() == 0 || surface.height() == 0) fail(path, "empty surface");
+    // Checked before decoding so that an unknown extension is reported without work.
+    if (file_kind(path) == FileKind::Other)
+        fail(path, "unknown image file extension (expected .png, .tga, .exr or .raw)");
+    Image image;
+    image.width = surface.width();
+    image.height = surface.height();
+    image.rgba.resize(size_t{image.width} * image.height * 4);
+    for (uint32_t y = 0; y < image.height; ++y)
+        for (uint32_t x = 0; x < image.width; ++x) {
+            const Float4 v = surface.read(x, y, 0);
+            std::copy(v.begin(), v.end(), image.rgba.begin() + static_cast<std::ptrdiff_t>((size_t{y} * image.width + x) * 4));
+        }
+    write_image(image, path);
+}
+
+Image read_image(const std::string& path) {
+    if (file_kind(path) == FileKind::Raw)
+        fail(path, ".raw files have no header, so their size is unknown; compare .exr files for float data");
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);  // values as stored: no premultiplication
+    auto input = OIIO::ImageInput::create(path);
+    if (!input) fail(path, "cannot read image: " + OIIO::geterror());
+    OIIO::ImageSpec spec;
+    if (!input->open(path, spec, config)) fail(path, "cannot read image: " + input->geterror());
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) fail(path, "empty image");
+    if (spec.depth > 1) fail(path, "volume images are not supported");
+    const auto w = static_cast<uint32_t>(spec.width), h = static_cast<uint32_t>(spec.height);
+    const int channels = spec.nchannels;
+    std::vector<float> pixels(size_t{w} * h * static_cast<size_t>(channels));
+    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
+        fail(path, "cannot read pixels: " + input->geterror());
+    input->close();
+
+    Image image;
+    image.width = w;
+    image.height = h;
+    image.rgba.resize(size_t{w} * h * 4);
+    for (size_t i = 0; i < size_t{w} * h; ++i) {
+        const float* p = &pixels[i * static_cast<size_t>(channels)];
+        float* o = &image.rgba[i * 4];
+        if (channels <= 2) {  // grey (and alpha)
+            o[0] = o[1] = o[2] = p[0];
+            o[3] = channels == 2 ? p[1] : 1.0f;
+        } else {
+            o[0] = p[0];
+            o[1] = p[1];
+            o[2] = p[2];
+            o[3] = channels >= 4 ? p[3] : 1.0f;
+        }
+    }
+    return image;
+}
+
+ImageDifference compare_images(const Image& a, const Image& b, double tolerance) {
+    check_same_size(a, b);
+    ImageDifference diff;
+    double sum = 0, sum_sq = 0;
+    const size_t pixels = size_t{a.width} * a.height;
+    for (size_t i = 0; i < pixels; ++i) {
+        bool differs = false;
+        for (size_t c = 0; c < 4; ++c) {
+            const double e = channel_error(a.rgba[i * 4 + c], b.rgba[i * 4 + c]);
+            diff.max_abs_error = std::max(diff.max_abs_error, e);
+            sum += e;
+            sum_sq += e * e;
+            if (e > tolerance) differs = true;
+        }
+        if (differs) ++diff.differing_pixels;
+    }
+    const double samples = static_cast<double>(pixels) * 4.0;
+    diff.mean_abs_error = pixels == 0 ? 0.0 : sum / samples;
+    const double mse = pixels == 0 ? 0.0 : sum_sq / samples;
+    diff.psnr_db = mse == 0.0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(1.0 / mse);
+    return diff;
+}
+
+Image difference_heatmap(const Image& a, const Image& b, double scale) {
+    check_same_size(a, b);
+    if (!(scale > 0.0) || std::isinf(scale))
+        throw ImageIoError("heat map scale must be a positive number (got " + std::to_string(scale) + ")");
+    Image map;
+    map.width = a.width;
+    map.height = a.height;
+    map.rgba.resize(a.rgba.size());
+    for (size_t i = 0; i < size_t{a.width} * a.height; ++i) {
+        double e = 0;
+        for (size_t c = 0; c < 4; ++c) e = std::max(e, channel_error(a.rgba[i * 4 + c], b.rgba[i * 4 + c]));
+        // black (equal) to full red (an error of `scale` or more)
+        map.rgba[i * 4 + 0] = static_cast<float>(std::min(e / scale, 1.0));
+        map.rgba[i * 4 + 1] = 0.0f;
+        map.rgba[i * 4 + 2] = 0.0f;
+        map.rgba[i * 4 + 3] = 1.0f;
+    }
+    return map;
+}
+
+}  // namespace sm2::runtime

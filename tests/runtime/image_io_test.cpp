@@ -1,0 +1,209 @@
+// image_io: surfaces written to PNG/EXR/raw and read back, and the image comparison metrics,
+// with every expected value worked out by hand.
+#include "sm2/runtime/image_io.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace sm2::runtime {
+namespace {
+
+namespace fs = std::filesystem;
+
+// One folder per test process (ctest runs tests in parallel processes).
+class ImageIo : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("sm2_image_io_" + std::to_string(getpid()));
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    [[nodiscard]] std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+private:
+    fs::path dir_;
+};
+
+// A8R8G8B8 texels are stored B, G, R, A in memory.
+void put_argb(Surface& s, uint32_t x, uint32_t y, uint8_t a, uint8_t r, uint8_t g, uint8_t b) {
+    std::byte* p = s.bytes().data() + y * s.row_pitch() + x * 4;
+    p[0] = std::byte{b};
+    p[1] = std::byte{g};
+    p[2] = std::byte{r};
+    p[3] = std::byte{a};
+}
+
+void expect_pixel(const Image& image, uint32_t x, uint32_t y, float r, float g, float b, float a) {
+    const float* p = &image.rgba[(size_t{y} * image.width + x) * 4];
+    EXPECT_FLOAT_EQ(p[0], r) << "pixel " << x << "," << y;
+    EXPECT_FLOAT_EQ(p[1], g) << "pixel " << x << "," << y;
+    EXPECT_FLOAT_EQ(p[2], b) << "pixel " << x << "," << y;
+    EXPECT_FLOAT_EQ(p[3], a) << "pixel " << x << "," << y;
+}
+
+Image make_image(uint32_t width, uint32_t height, std::vector<float> rgba) {
+    Image image;
+    image.width = width;
+    image.height = height;
+    image.rgba = std::move(rgba);
+    return image;
+}
+
+TEST_F(ImageIo, PngKeepsEightBitValuesAndUnassociatedAlpha) {
+    Surface s(Format::A8R8G8B8, 2, 2);
+    put_argb(s, 0, 0, 0xFF, 0x33, 0x66, 0x99);
+    put_argb(s, 1, 0, 0x80, 0x40, 0x00, 0xFF);  // half alpha: colour must not be premultiplied
+    put_argb(s, 0, 1, 0x00, 0x01, 0x02, 0x03);
+    put_argb(s, 1, 1, 0xFE, 0xFF, 0xFF, 0xFF);
+    write_surface(s, path("a.png"));
+    const Image image = read_image(path("a.png"));
+    ASSERT_EQ(image.width, 2u);
+    ASSERT_EQ(image.height, 2u);
+    expect_pixel(image, 0, 0, 51.0f / 255, 102.0f / 255, 153.0f / 255, 1.0f);
+    expect_pixel(image, 1, 0, 64.0f / 255, 0.0f, 1.0f, 128.0f / 255);
+    expect_pixel(image, 0, 1, 1.0f / 255, 2.0f / 255, 3.0f / 255, 0.0f);
+    expect_pixel(image, 1, 1, 1.0f, 1.0f, 1.0f, 254.0f / 255);
+}
+
+TEST_F(ImageIo, PngOfALuminanceSurfaceIsGreyWithOpaqueAlpha) {
+    Surface s(Format::L8, 1, 1);
+    s.bytes()[0] = std::byte{200};
+    write_surface(s, path("l.png"));
+    const Image image = read_image(path("l.png"));
+    expect_pixel(image, 0, 0, 200.0f / 255, 200.0f / 255, 200.0f / 255, 1.0f);
+}
+
+TEST_F(ImageIo, PngClampsFloatSurfacesAndRoundsToNearest) {
+    Surface s(Format::A32B32G32R32F, 1, 1);
+    // 2 -> 1, -1 -> 0, 0.5 -> round(127.5) = 128, 0.1 -> round(25.5) = 26
+    s.write(0, 0, 0, Float4{2.0f, -1.0f, 0.5f, 0.1f});
+    write_surface(s, path("f.png"));
+    expect_pixel(read_image(path("f.png")), 0, 0, 1.0f, 0.0f, 128.0f / 255, 26.0f / 255);
+}
+
+TEST_F(ImageIo, ExrKeepsFloatValuesOutsideZeroToOne) {
+    Surface s(Format::A32B32G32R32F, 2, 1);
+    s.write(0, 0, 0, Float4{0.25f, -2.5f, 1000.0f, 1.0f});
+    s.write(1, 0, 0, Float4{3.0f, 0.0f, -0.125f, 0.5f});
+    write_surface(s, path("f.exr"));
+    const Image image = read_image(path("f.exr"));
+    ASSERT_EQ(image.width, 2u);
+    ASSERT_EQ(image.height, 1u);
+    expect_pixel(image, 0, 0, 0.25f, -2.5f, 1000.0f, 1.0f);
+    expect_pixel(image, 1, 0, 3.0f, 0.0f, -0.125f, 0.5f);
+}
+
+TEST_F(ImageIo, RawIsLittleEndianFloatRgbaRowMajor) {
+    Surface s(Format::A8R8G8B8, 2, 1);
+    put_argb(s, 0, 0, 0xFF, 0xFF, 0x00, 0x00);  // red
+    put_argb(s, 1, 0, 0x00, 0x00, 0x00, 0xFF);  // blue, alpha 0
+    write_surface(s, path("s.raw"));
+    std::ifstream in(path("s.raw"), std::ios::binary);
+    const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_EQ(bytes.size(), 2u * 4u * 4u);
+    // 1.0f = 0x3F800000 -> bytes 00 00 80 3F
+    EXPECT_EQ(static_cast<unsigned char>(bytes[0]), 0x00);
+    EXPECT_EQ(static_cast<unsigned char>(bytes[2]), 0x80);
+    EXPECT_EQ(static_cast<unsigned char>(bytes[3]), 0x3F);
+    std::vector<float> values(8);
+    for (size_t i = 0; i < 8; ++i) {
+        uint32_t bits = 0;
+        for (size_t b = 0; b < 4; ++b) bits |= uint32_t{static_cast<unsigned char>(bytes[i * 4 + b])} << (8 * b);
+        values[i] = std::bit_cast<float>(bits);
+    }
+    EXPECT_EQ(values, (std::vector<float>{1, 0, 0, 1, 0, 0, 1, 0}));
+}
+
+TEST_F(ImageIo, UnknownExtensionAndRawReadAreErrorsNamingThePath) {
+    Surface s(Format::A8R8G8B8, 1, 1);
+    try {
+        write_surface(s, path("x.bmpx"));
+        FAIL() << "no error";
+    } catch (const ImageIoError& e) {
+        EXPECT_NE(std::string(e.what()).find("x.bmpx"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW((void)read_image(path("x.raw")), ImageIoError);
+    EXPECT_THROW((void)read_image(path("missing.png")), ImageIoError);
+    EXPECT_FALSE(fs::exists(path("x.bmpx")));
+}
+
+TEST(CompareImages, IdenticalImagesHaveNoErrorAndInfinitePsnr) {
+    const Image a = make_image(2, 1, {0.1f, 0.2f, 0.3f, 1, 0.5f, 0.5f, 0.5f, 0.5f});
+    const ImageDifference d = compare_images(a, a);
+    EXPECT_EQ(d.max_abs_error, 0.0);
+    EXPECT_EQ(d.mean_abs_error, 0.0);
+    EXPECT_TRUE(std::isinf(d.psnr_db) && d.psnr_db > 0);
+    EXPECT_EQ(d.differing_pixels, 0u);
+}
+
+TEST(CompareImages, MetricsWorkedOutByHand) {
+    const Image a = make_image(2, 1, {0, 0, 0, 0, 0, 0, 0, 0});
+    const Image b = make_image(2, 1, {0.5f, 0, 0, 0, 0, 0.25f, 0, 0});
+    const ImageDifference d = compare_images(a, b);
+    // errors over 8 channels: 0.5 and 0.25, the rest 0
+    EXPECT_DOUBLE_EQ(d.max_abs_error, 0.5);
+    EXPECT_DOUBLE_EQ(d.mean_abs_error, 0.75 / 8);  // 0.09375
+    // MSE = (0.25 + 0.0625) / 8 = 0.0390625; PSNR = 10 log10(1 / MSE) = 10 log10(25.6)
+    EXPECT_NEAR(d.psnr_db, 14.0823996531, 1e-9);
+    EXPECT_EQ(d.differing_pixels, 2u);
+    // A tolerance of 0.3 forgives the 0.25 but not the 0.5.
+    EXPECT_EQ(compare_images(a, b, 0.3).differing_pixels, 1u);
+    // The tolerance is a bound, not a strict one: an error equal to it is allowed.
+    EXPECT_EQ(compare_images(a, b, 0.5).differing_pixels, 0u);
+}
+
+TEST(CompareImages, NanAgainstNanIsEqualNanAgainstANumberIsInfinitelyWrong) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const Image a = make_image(1, 2, {nan, 0, 0, 1, nan, 0, 0, 1});
+    const Image b = make_image(1, 2, {nan, 0, 0, 1, 0.0f, 0, 0, 1});
+    const ImageDifference d = compare_images(a, b, 1.0);
+    EXPECT_TRUE(std::isinf(d.max_abs_error));
+    EXPECT_EQ(d.differing_pixels, 1u);
+}
+
+TEST(CompareImages, SizeMismatchIsAnError) {
+    const Image a = make_image(2, 1, std::vector<float>(8, 0.0f));
+    const Image b = make_image(1, 1, std::vector<float>(4, 0.0f));
+    try {
+        (void)compare_images(a, b);
+        FAIL() << "no error";
+    } catch (const ImageIoError& e) {
+        EXPECT_STREQ(e.what(), "image sizes differ: 2x1 and 1x1");
+    }
+    EXPECT_THROW((void)difference_heatmap(a, b, 1.0), ImageIoError);
+}
+
+TEST(CompareImages, HeatmapIsRedScaledByTheLargestChannelError) {
+    const Image a = make_image(3, 1, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1});
+    // errors: pixel 0 max 0.5 (blue), pixel 1 max 0.25 (alpha), pixel 2 none
+    const Image b = make_image(3, 1, {0.1f, 0, 0.5f, 1, 0, 0, 0, 0.75f, 0, 0, 0, 1});
+    const Image map = difference_heatmap(a, b, 0.5);
+    ASSERT_EQ(map.width, 3u);
+    expect_pixel(map, 0, 0, 1.0f, 0, 0, 1);
+    expect_pixel(map, 1, 0, 0.5f, 0, 0, 1);
+    expect_pixel(map, 2, 0, 0.0f, 0, 0, 1);
+    // errors beyond the scale saturate at full red
+    expect_pixel(difference_heatmap(a, b, 0.25), 0, 0, 1.0f, 0, 0, 1);
+    EXPECT_THROW((void)difference_heatmap(a, b, 0.0), ImageIoError);
+}
+
+TEST_F(ImageIo, WriteImageThenReadImageRoundTripsAHeatmap) {
+    const Image map = make_image(2, 1, {1.0f, 0, 0, 1, 0.5f, 0, 0, 1});
+    write_image(map, path("h.png"));
+    const Image back = read_image(path("h.png"));
+    expect_pixel(back, 0, 0, 1.0f, 0, 0, 1);
+    expect_pixel(back, 1, 0, 128.0f / 255, 0, 0, 1);  // round(0.5 * 255) = round(127.5) = 128
+}
+
+}  // namespace
+}  // namespace sm2::runtime
