@@ -1,0 +1,93 @@
+// The replayer: executes a command stream (cs::Stream) one statement at a time on a Device
+// (docs/command-stream.md, "Calls"). It turns each call's arguments into the Device method's
+// parameters: enums by name with or without their D3D prefix (d3d9_names), formats by name,
+// render/sampler state values typed by their state, vertex elements as tuples, blobs and side
+// files as bytes, shaders from assembly heredocs, side files or bytecode blobs.
+//
+// A call whose arguments have the wrong shape, or that the Device refuses, becomes a diagnostic
+// with the statement's line ("file:line: D3DERR_INVALIDCALL: Call: message"); the device is left
+// as it was and the replay goes on with the next statement.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sm2/isa/program.h"
+#include "sm2/runtime/command_stream.h"
+#include "sm2/runtime/device.h"
+
+namespace sm2::runtime {
+
+// Shader assembly text -> program. The runtime does not depend on the assembler (DESIGN.md:
+// runtime uses isa and emu only), so whoever replays hands one in (tools/, tests/).
+struct AssembledShader {
+    std::optional<isa::Program> program;
+    std::string error;  // the first error, when there is no program
+    uint32_t line = 0;  // its 1-based line in the assembly text (0: none)
+};
+using ShaderAssembler = std::function<AssembledShader(std::string_view text)>;
+
+struct ReplayDiagnostic {
+    std::string file;
+    uint32_t line = 0;       // 1-based line in the text form; 0 for a binary stream
+    size_t record = 0;       // 1-based record (statement) number, for binary streams
+    std::string call;        // "SetRenderState"
+    std::string message;     // without the call name
+    // "file:line: D3DERR_INVALIDCALL: Call: message" ("file: record N: ..." without a line)
+    [[nodiscard]] std::string to_string() const;
+};
+
+// One frame: the statements from the end of the previous Present (or the start) up to and
+// including this Present.
+struct FrameStats {
+    double seconds = 0;
+    size_t calls = 0;              // calls executed (refused ones included)
+    DrawStatistics statistics{};   // what the frame's draws did
+};
+
+struct ReplayOptions {
+    std::string file_name = "<input>";  // for diagnostics
+    std::string base_dir = ".";         // LoadTexture paths are relative to it (the stream's folder)
+    ShaderAssembler assembler;          // empty: asm heredocs are refused
+    // Called after each statement with (statements done, total) during replay(); may be empty.
+    std::function<void(size_t, size_t)> progress;
+};
+
+struct ReplayResult {
+    std::vector<ReplayDiagnostic> diagnostics;
+    std::vector<FrameStats> frames;  // one per Present that succeeded
+    size_t calls = 0;                // calls executed (comments and blank lines are not calls)
+    size_t refused = 0;              // calls that became diagnostics
+    double seconds = 0;              // the whole replay
+    DrawStatistics statistics{};     // what the replay's draws did (the device's counters' growth)
+    [[nodiscard]] bool ok() const { return diagnostics.empty(); }
+};
+
+class Replayer {
+public:
+    explicit Replayer(Device& device, ReplayOptions options = {});
+
+    // Executes one statement (comments and blank lines do nothing). Returns false and records a
+    // diagnostic when the call was refused; the device is then unchanged.
+    bool execute(const cs::Statement& statement, size_t record = 0);
+    // Executes every statement in order, timing frames at each Present.
+    ReplayResult replay(const cs::Stream& stream);
+
+    [[nodiscard]] const std::vector<ReplayDiagnostic>& diagnostics() const { return diagnostics_; }
+    [[nodiscard]] Device& device() { return device_; }
+
+private:
+    Device& device_;
+    ReplayOptions options_;
+    std::vector<ReplayDiagnostic> diagnostics_;
+};
+
+// Replays `stream` on `device` with a fresh Replayer.
+ReplayResult replay(Device& device, const cs::Stream& stream, const ReplayOptions& options = {});
+
+}  // namespace sm2::runtime
