@@ -17,4 +17,10 @@ void add_run_command(CLI::App& app, int& status);
 // Command streams: `cs pack`, `cs dump`.
 void add_stream_commands(CLI::App& app, int& status);
 
+// Image comparison: `diff`.
+void add_diff_command(CLI::App& app, int& status);
+
+// Command-stream replay on the Device: `replay`, `bench`.
+void add_replay_commands(CLI::App& app, int& status);
+
 }  // namespace sm2::tools

@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
     sm2::tools::add_shader_commands(app, status);
     sm2::tools::add_run_command(app, status);
     sm2::tools::add_stream_commands(app, status);
+    sm2::tools::add_replay_commands(app, status);
+    sm2::tools::add_diff_command(app, status);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

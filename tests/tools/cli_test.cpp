@@ -301,4 +301,171 @@ TEST(CliRun, BadInputIsStatus1WithAMessage) {
     EXPECT_NE(r.err.find("[outputs]"), std::string::npos) << r.err;
 }
 
+
+// ---------------------------------------------------------------------------------------------
+// sm2 replay, sm2 bench, sm2 diff
+
+std::string make_dir(const std::string& name) {
+    const std::string dir = tmp(name);
+    std::system(("rm -rf " + dir + " && mkdir -p " + dir).c_str());
+    return dir;
+}
+
+bool exists(const std::string& path) { return std::ifstream(path).good(); }
+
+// Writes two 2x2 images and a 1x1 one through sm2 replay (SaveSurface), independently of Clear:
+// a.png all opaque black, b.png the same but pixel (1,1) red 0x80, c.png 1x1.
+std::string make_images() {
+    const std::string dir = make_dir("images");
+    write_file(dir + "/images.sm2cs",
+               "sm2cs 1\n"
+               "CreateRenderTarget a 2 2 A8R8G8B8\n"
+               "LockRect a 0 u32[ 0xFF000000 0xFF000000 0xFF000000 0xFF000000 ]\n"
+               "SaveSurface a \"a.png\"\n"
+               "CreateRenderTarget b 2 2 A8R8G8B8\n"
+               "LockRect b 0 u32[ 0xFF000000 0xFF000000 0xFF000000 0xFF800000 ]\n"
+               "SaveSurface b \"b.png\"\n"
+               "CreateRenderTarget c 1 1 A8R8G8B8\n"
+               "SaveSurface c \"c.png\"\n");
+    auto r = sm2("replay " + dir + "/images.sm2cs -o " + dir);
+    EXPECT_EQ(r.status, 0) << r.err;
+    return dir;
+}
+
+TEST(CliReplay, ClearAndPresentWriteTheClearedFrame) {
+    const std::string dir = make_dir("replay_clear");
+    const std::string stream = dir + "/clear.sm2cs";
+    write_file(stream,
+               "sm2cs 1\n"
+               "CreateDevice 2 2 A8R8G8B8\n"
+               "Clear TARGET 0xFF336699 1 0\n"
+               "Present\n"
+               "CreateRenderTarget ref 2 2 A8R8G8B8\n"
+               "LockRect ref 0 u32[ 0xFF336699 0xFF336699 0xFF336699 0xFF336699 ]\n"
+               "SaveSurface ref \"ref.png\"\n"
+               "LockRect ref 0 u32[ 0xFF336699 0xFF336699 0xFF336699 0xFF33669A ]\n"
+               "SaveSurface ref \"off_by_one.png\"\n");
+    auto r = sm2("replay " + stream + " -o " + dir + "/out");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(exists(dir + "/out/frame_0000.png"));
+    EXPECT_FALSE(exists(dir + "/out/frame_0001.png"));
+    EXPECT_NE(r.out.find("frame_0000.png: "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("1 frames, 8 calls"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("0 draws"), std::string::npos) << r.out;
+    // The frame holds exactly the bytes written by hand, and not one more or less blue.
+    EXPECT_EQ(sm2("diff " + dir + "/out/frame_0000.png " + dir + "/out/ref.png").status, 0);
+    EXPECT_EQ(sm2("diff " + dir + "/out/frame_0000.png " + dir + "/out/off_by_one.png").status, 1);
+    // --quiet keeps only the summary
+    auto q = sm2("replay " + stream + " -o " + dir + "/out2 --quiet --threads 3");
+    EXPECT_EQ(q.status, 0) << q.err;
+    EXPECT_EQ(q.out.find("frame_0000.png"), std::string::npos) << q.out;
+    EXPECT_NE(q.out.find("1 frames"), std::string::npos) << q.out;
+    EXPECT_TRUE(q.err.empty()) << q.err;  // no progress: stderr is not a terminal
+}
+
+TEST(CliReplay, RefusedCallsExit1WithFileLineAfterFinishingTheStream) {
+    const std::string dir = make_dir("replay_bad");
+    const std::string stream = dir + "/bad.sm2cs";
+    write_file(stream,
+               "sm2cs 1\n"
+               "CreateDevice 2 2 A8R8G8B8\n"
+               "CreateVertexBuffer vb\n"
+               "SetRenderState CULLMODE SIDEWAYS\n"
+               "Present\n");
+    auto r = sm2("replay " + stream + " -o " + dir);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find(stream + ":3: D3DERR_INVALIDCALL: CreateVertexBuffer: expects 2 arguments"),
+              std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(stream + ":4: D3DERR_INVALIDCALL: SetRenderState: "), std::string::npos) << r.err;
+    EXPECT_TRUE(exists(dir + "/frame_0000.png"));  // the Present after the errors still ran
+
+    // A stream that does not parse stops with file:line:column.
+    auto p = sm2("replay - -o " + dir, "sm2cs 1\nPresent\nFrobnicate\n");
+    EXPECT_EQ(p.status, 1);
+    EXPECT_NE(p.err.find("<stdin>:3:1: error: unknown call 'Frobnicate'"), std::string::npos) << p.err;
+    EXPECT_EQ(sm2("replay /nonexistent/s.sm2cs -o " + dir).status, 1);
+}
+
+TEST(CliReplay, BinaryStreamsReplayToo) {
+    const std::string dir = make_dir("replay_binary");
+    write_file(dir + "/s.sm2cs", "sm2cs 1\nCreateDevice 1 1 A8R8G8B8\nPresent\nPresent\n");
+    ASSERT_EQ(sm2("cs pack " + dir + "/s.sm2cs -o " + dir + "/s.sm2cb").status, 0);
+    auto r = sm2("replay " + dir + "/s.sm2cb -o " + dir + "/out");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(exists(dir + "/out/frame_0001.png"));
+}
+
+TEST(CliReplay, BadArgumentsAreStatus2) {
+    EXPECT_EQ(sm2("replay").status, 2);                         // no stream
+    EXPECT_EQ(sm2("replay s.sm2cs").status, 2);                 // no -o
+    EXPECT_EQ(sm2("replay s.sm2cs -o out --threads 0").status, 2);
+    EXPECT_EQ(sm2("replay s.sm2cs -o out --frobnicate").status, 2);
+    EXPECT_EQ(sm2("bench").status, 2);
+    EXPECT_EQ(sm2("bench s.sm2cs --repeat 0").status, 2);
+    EXPECT_EQ(sm2("bench s.sm2cs --repeat x").status, 2);
+    EXPECT_EQ(sm2("diff a.png").status, 2);
+    EXPECT_EQ(sm2("diff a.png b.png --tolerance -1").status, 2);
+    auto help = sm2("--help");
+    EXPECT_EQ(help.status, 0);
+    for (const char* command : {"replay", "bench", "diff"}) EXPECT_NE(help.out.find(command), std::string::npos) << command;
+}
+
+TEST(CliBench, ReportsRatesOfTheMedianRun) {
+    const std::string dir = make_dir("bench");
+    write_file(dir + "/b.sm2cs",
+               "sm2cs 1\nCreateDevice 4 4 A8R8G8B8\nClear TARGET 0xFF000000 1 0\nPresent\nPresent\nPresent\n");
+    auto r = sm2("bench " + dir + "/b.sm2cs --repeat 3 --threads 2");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("5 calls, 3 frames, 0 draws"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("3 runs, 2 threads"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("frames/s: "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("pixels shaded/s: "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("vertices/s: "), std::string::npos) << r.out;
+    // in memory: no frames written anywhere
+    EXPECT_FALSE(exists("frame_0000.png"));
+    EXPECT_FALSE(exists(dir + "/frame_0000.png"));
+    auto bad = sm2("bench -", "sm2cs 1\nPresent\n");
+    EXPECT_EQ(bad.status, 1);
+    EXPECT_NE(bad.err.find("<stdin>:2: D3DERR_INVALIDCALL: Present:"), std::string::npos) << bad.err;
+}
+
+TEST(CliDiff, IdenticalImagesAreStatus0) {
+    const std::string dir = make_images();
+    auto r = sm2("diff " + dir + "/a.png " + dir + "/a.png");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("size: 2x2"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("max abs error: 0\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("PSNR: inf dB"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("differing pixels: 0 of 4"), std::string::npos) << r.out;
+}
+
+TEST(CliDiff, DifferingImagesAreStatus1WithMetricsAndHeatmap) {
+    const std::string dir = make_images();
+    auto r = sm2("diff " + dir + "/a.png " + dir + "/b.png --heatmap " + dir + "/heat.png");
+    EXPECT_EQ(r.status, 1) << r.err;
+    // one channel of 16 differs by 128/255, read back as the float 0.50196081; mean
+    // 0.50196081 / 16 = 0.03137255 (0.0313726 in 6 digits); PSNR = 10 log10(16 / (128/255)^2) = 18.0278 dB
+    EXPECT_NE(r.out.find("max abs error: 0.501961\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("mean abs error: 0.0313726\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("PSNR: 18.0278 dB"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("differing pixels: 1 of 4 (tolerance 0)"), std::string::npos) << r.out;
+    EXPECT_TRUE(exists(dir + "/heat.png"));
+    // The heat map (worst pixel full red by default) is itself an image sm2 diff reads.
+    auto h = sm2("diff " + dir + "/heat.png " + dir + "/a.png");
+    EXPECT_NE(h.out.find("max abs error: 1\n"), std::string::npos) << h.out;  // red channel 1 against 0
+    EXPECT_NE(h.out.find("differing pixels: 1 of 4"), std::string::npos) << h.out;
+    // A tolerance above the error passes.
+    EXPECT_EQ(sm2("diff " + dir + "/a.png " + dir + "/b.png --tolerance 0.51").status, 0);
+}
+
+TEST(CliDiff, SizeMismatchAndMissingFilesAreStatus1) {
+    const std::string dir = make_images();
+    auto r = sm2("diff " + dir + "/a.png " + dir + "/c.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("sm2 diff: image sizes differ: 2x2 and 1x1"), std::string::npos) << r.err;
+    auto m = sm2("diff " + dir + "/a.png " + dir + "/missing.png");
+    EXPECT_EQ(m.status, 1);
+    EXPECT_NE(m.err.find("missing.png"), std::string::npos) << m.err;
+}
+
 }  // namespace

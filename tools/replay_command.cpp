@@ -1,0 +1,269 @@
+// sm2 replay / sm2 bench: run a command stream on the Device, writing its frames, or timing it.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "commands.h"
+#include "io.h"
+#include "sm2/assembler/assembler.h"
+#include "sm2/runtime/command_stream.h"
+#include "sm2/runtime/device.h"
+#include "sm2/runtime/replay.h"
+
+namespace sm2::tools {
+
+namespace {
+
+namespace cs = runtime::cs;
+
+struct LoadedStream {
+    cs::Stream stream;
+    std::string file_name;  // for diagnostics
+    std::string base_dir;   // side files and LoadTexture paths are relative to it
+};
+
+// Reads a stream in either form; prints the error and returns nullopt on failure.
+std::optional<LoadedStream> load_stream(const std::string& path, const char* command) {
+    std::string error;
+    auto bytes = read_input(path, error);
+    if (!bytes) {
+        std::cerr << "sm2 " << command << ": " << error << '\n';
+        return std::nullopt;
+    }
+    LoadedStream loaded;
+    loaded.file_name = display_name(path);
+    loaded.base_dir = path == "-" ? "." : std::filesystem::path(path).parent_path().string();
+    if (loaded.base_dir.empty()) loaded.base_dir = ".";
+    cs::ParseResult result;
+    if (cs::looks_packed(*bytes)) {
+        result = cs::unpack(*bytes);
+        if (result.error) result.error->file = loaded.file_name;
+    } else {
+        cs::TextOptions options;
+        options.file_name = loaded.file_name;
+        options.base_dir = loaded.base_dir;
+        result = cs::parse_text({reinterpret_cast<const char*>(bytes->data()), bytes->size()}, options);
+    }
+    if (!result.ok()) {
+        std::cerr << result.error->to_string() << '\n';
+        return std::nullopt;
+    }
+    loaded.stream = std::move(*result.stream);
+    return loaded;
+}
+
+// Shader text in a stream goes through the assembler (the runtime does not link it).
+runtime::ShaderAssembler stream_assembler(const std::string& file_name) {
+    return [file_name](std::string_view text) {
+        assembler::AssembleOptions options;
+        options.file_name = file_name;
+        auto assembled = assembler::assemble(text, options);
+        runtime::AssembledShader out;
+        if (assembled.program) {
+            out.program = std::move(assembled.program);
+            return out;
+        }
+        for (const auto& d : assembled.diagnostics)
+            if (d.severity == assembler::Severity::Error) {
+                out.error = d.message;
+                out.line = d.line;
+                break;
+            }
+        return out;
+    };
+}
+
+runtime::ReplayOptions replay_options(const LoadedStream& loaded) {
+    runtime::ReplayOptions options;
+    options.file_name = loaded.file_name;
+    options.base_dir = loaded.base_dir;
+    options.assembler = stream_assembler(loaded.file_name);
+    return options;
+}
+
+void print_diagnostics(const std::vector<runtime::ReplayDiagnostic>& diagnostics) {
+    for (const auto& d : diagnostics) std::cerr << d.to_string() << '\n';
+}
+
+std::string fixed(double v, int decimals) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+    return buf;
+}
+
+// ---------------------------------------------------------------------------------------------
+// sm2 replay
+
+struct ReplayCliOptions {
+    std::string stream;
+    std::string output;
+    unsigned threads = 1;
+    bool quiet = false;
+};
+
+// "statement 120/4000, frame 3" on one terminal line, at most ten times a second.
+class Progress {
+public:
+    explicit Progress(bool enabled) : enabled_(enabled) {}
+    void update(size_t done, size_t total, uint32_t frames) {
+        if (!enabled_) return;
+        const auto now = std::chrono::steady_clock::now();
+        if (done != total && now - last_ < std::chrono::milliseconds(100)) return;
+        last_ = now;
+        std::fprintf(stderr, "\rreplay: statement %zu/%zu, frame %u", done, total, frames);
+        std::fflush(stderr);
+        shown_ = true;
+    }
+    void finish() {
+        if (shown_) std::fprintf(stderr, "\r\033[K");
+        shown_ = false;
+    }
+
+private:
+    bool enabled_;
+    bool shown_ = false;
+    std::chrono::steady_clock::time_point last_{};
+};
+
+int run_replay(const ReplayCliOptions& o) {
+    auto loaded = load_stream(o.stream, "replay");
+    if (!loaded) return kInvalidInput;
+    std::error_code ec;
+    std::filesystem::create_directories(o.output, ec);
+    if (ec || !std::filesystem::is_directory(o.output)) {
+        std::cerr << "sm2 replay: cannot create the output folder " << o.output
+                  << (ec ? ": " + ec.message() : std::string()) << '\n';
+        return kInvalidInput;
+    }
+    runtime::DeviceOptions device_options;
+    device_options.output_dir = o.output;
+    device_options.threads = o.threads;
+    runtime::Device device(device_options);
+
+    runtime::ReplayOptions options = replay_options(*loaded);
+    Progress progress(!o.quiet && isatty(STDERR_FILENO) != 0);
+    options.progress = [&progress, &device](size_t done, size_t total) {
+        progress.update(done, total, device.frames_presented());
+    };
+    runtime::Replayer replayer(device, options);
+    const runtime::ReplayResult result = replayer.replay(loaded->stream);
+    progress.finish();
+
+    if (!o.quiet) {
+        for (size_t i = 0; i < result.frames.size(); ++i) {
+            const auto& f = result.frames[i];
+            char name[32];
+            std::snprintf(name, sizeof name, "frame_%04zu.png", i);
+            std::cout << name << ": " << fixed(f.seconds * 1000.0, 3) << " ms, " << f.statistics.draws << " draws, "
+                      << f.statistics.vertices_shaded << " vertices, " << f.statistics.pixels_shaded << " pixels\n";
+        }
+    }
+    const auto& s = result.statistics;
+    std::cout << result.frames.size() << " frames, " << result.calls << " calls in " << fixed(result.seconds, 3)
+              << " s: " << s.draws << " draws, " << s.vertices_shaded << " vertices, " << s.primitives
+              << " primitives, " << s.pixels_shaded << " pixels shaded, " << s.pipelines_built
+              << " pipelines built\n";
+    print_diagnostics(result.diagnostics);
+    if (!result.ok()) {
+        std::cerr << "sm2 replay: " << result.refused << " of " << result.calls << " calls refused\n";
+        return kInvalidInput;
+    }
+    return kOk;
+}
+
+// ---------------------------------------------------------------------------------------------
+// sm2 bench
+
+struct BenchCliOptions {
+    std::string stream;
+    unsigned repeat = 5;
+    unsigned threads = 1;
+};
+
+std::string rate(double count, double seconds) {
+    if (seconds <= 0.0) return "inf";
+    const double r = count / seconds;
+    char buf[64];
+    if (r >= 1e9) std::snprintf(buf, sizeof buf, "%.3f G", r / 1e9);
+    else if (r >= 1e6) std::snprintf(buf, sizeof buf, "%.3f M", r / 1e6);
+    else if (r >= 1e3) std::snprintf(buf, sizeof buf, "%.3f k", r / 1e3);
+    else std::snprintf(buf, sizeof buf, "%.3f", r);
+    return buf;
+}
+
+int run_bench(const BenchCliOptions& o) {
+    auto loaded = load_stream(o.stream, "bench");
+    if (!loaded) return kInvalidInput;
+    const runtime::ReplayOptions options = replay_options(*loaded);
+
+    std::vector<runtime::ReplayResult> runs;
+    runs.reserve(o.repeat);
+    for (unsigned i = 0; i < o.repeat; ++i) {
+        runtime::DeviceOptions device_options;
+        device_options.threads = o.threads;
+        device_options.write_image = [](const runtime::Surface&, const std::string&) {};  // in memory only
+        runtime::Device device(device_options);
+        runs.push_back(runtime::replay(device, loaded->stream, options));
+    }
+    // Rates are ratios of one run's counts to that run's time: the median run by time.
+    std::vector<size_t> order(runs.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return runs[a].seconds < runs[b].seconds; });
+    const runtime::ReplayResult& median = runs[order[order.size() / 2]];
+    const runtime::ReplayResult& best = runs[order.front()];
+    const auto& s = median.statistics;
+
+    std::cout << loaded->file_name << ": " << median.calls << " calls, " << median.frames.size() << " frames, "
+              << s.draws << " draws, " << s.vertices_shaded << " vertices, " << s.pixels_shaded
+              << " pixels shaded per run; " << o.repeat << " runs, " << o.threads << " thread"
+              << (o.threads == 1 ? "" : "s") << '\n'
+              << "time per run: median " << fixed(median.seconds * 1000.0, 3) << " ms, best "
+              << fixed(best.seconds * 1000.0, 3) << " ms\n"
+              << "frames/s: " << rate(static_cast<double>(median.frames.size()), median.seconds) << '\n'
+              << "pixels shaded/s: " << rate(static_cast<double>(s.pixels_shaded), median.seconds) << '\n'
+              << "vertices/s: " << rate(static_cast<double>(s.vertices_shaded), median.seconds) << '\n'
+              << "draws/s: " << rate(static_cast<double>(s.draws), median.seconds) << '\n';
+    if (!runs.front().ok()) {
+        print_diagnostics(runs.front().diagnostics);
+        std::cerr << "sm2 bench: " << runs.front().refused << " of " << runs.front().calls << " calls refused\n";
+        return kInvalidInput;
+    }
+    return kOk;
+}
+
+}  // namespace
+
+void add_replay_commands(CLI::App& app, int& status) {
+    auto r = std::make_shared<ReplayCliOptions>();
+    auto* replay = app.add_subcommand(
+        "replay", "Replay a command stream: every Present writes DIR/frame_NNNN.png, SaveSurface writes relative "
+                  "to DIR; refused calls are reported with file:line (exit 1) and the replay goes on");
+    replay->add_option("stream", r->stream, "Command stream, text (.sm2cs) or binary (.sm2cb); '-' for stdin")
+        ->required();
+    replay->add_option("-o,--output", r->output, "Output folder (created if missing)")->required();
+    replay->add_option("--threads", r->threads, "Threads for tiles (output does not depend on it)")
+        ->check(CLI::Range(1u, 256u));
+    replay->add_flag("-q,--quiet", r->quiet, "Print only the summary (no per-frame lines, no progress)");
+    replay->callback([r, &status] { status = run_replay(*r); });
+
+    auto b = std::make_shared<BenchCliOptions>();
+    auto* bench = app.add_subcommand(
+        "bench", "Replay a command stream N times in memory (no files written) and report frames/s, pixels "
+                 "shaded/s and vertices/s of the median run");
+    bench->add_option("stream", b->stream, "Command stream, text (.sm2cs) or binary (.sm2cb); '-' for stdin")
+        ->required();
+    bench->add_option("--repeat", b->repeat, "Runs (default 5)")->check(CLI::Range(1u, 100000u));
+    bench->add_option("--threads", b->threads, "Threads for tiles")->check(CLI::Range(1u, 256u));
+    bench->callback([b, &status] { status = run_bench(*b); });
+}
+
+}  // namespace sm2::tools
