@@ -232,6 +232,11 @@ int run_bench(const BenchCliOptions& o) {
               << "pixels shaded/s: " << rate(static_cast<double>(s.pixels_shaded), median.seconds) << '\n'
               << "vertices/s: " << rate(static_cast<double>(s.vertices_shaded), median.seconds) << '\n'
               << "draws/s: " << rate(static_cast<double>(s.draws), median.seconds) << '\n';
+    if (s.draws > 0)
+        std::cout << "stage time per run: pipelines " << fixed(s.pipeline_seconds * 1000.0, 3) << " ms, vertex "
+                  << fixed(s.vertex_seconds * 1000.0, 3) << " ms, setup " << fixed(s.setup_seconds * 1000.0, 3)
+                  << " ms, pixel " << fixed(s.pixel_seconds * 1000.0, 3) << " ms"
+                  << (o.threads > 1 ? " (summed over threads)" : "") << '\n';
     if (!runs.front().ok()) {
         print_diagnostics(runs.front().diagnostics);
         std::cerr << "sm2 bench: " << runs.front().refused << " of " << runs.front().calls << " calls refused\n";

@@ -583,6 +583,10 @@ DrawStatistics difference(const DrawStatistics& after, const DrawStatistics& bef
     d.primitives = after.primitives - before.primitives;
     d.pixels_shaded = after.pixels_shaded - before.pixels_shaded;
     d.pipelines_built = after.pipelines_built - before.pipelines_built;
+    d.pipeline_seconds = after.pipeline_seconds - before.pipeline_seconds;
+    d.vertex_seconds = after.vertex_seconds - before.vertex_seconds;
+    d.setup_seconds = after.setup_seconds - before.setup_seconds;
+    d.pixel_seconds = after.pixel_seconds - before.pixel_seconds;
     return d;
 }
 

@@ -386,6 +386,17 @@ TEST(CliReplay, RefusedCallsExit1WithFileLineAfterFinishingTheStream) {
     EXPECT_EQ(sm2("replay /nonexistent/s.sm2cs -o " + dir).status, 1);
 }
 
+TEST(CliReplay, SampleScenesReplayWithoutDiagnostics) {
+    const std::string dir = make_dir("replay_scenes");
+    const std::string scenes = std::string(SM2_SOURCE_DIR) + "/samples/scenes/";
+    for (const char* name : {"01_gouraud_triangle", "02_shared_edges_stencil", "09_lake", "12_cube_map"}) {
+        auto r = sm2("replay " + scenes + name + ".sm2cs -o " + dir + "/" + name + " --quiet");
+        EXPECT_EQ(r.status, 0) << name << ": " << r.err;
+        EXPECT_TRUE(r.err.empty()) << name << ": " << r.err;
+        EXPECT_TRUE(exists(dir + "/" + name + "/frame_0000.png")) << name;
+    }
+}
+
 TEST(CliReplay, BinaryStreamsReplayToo) {
     const std::string dir = make_dir("replay_binary");
     write_file(dir + "/s.sm2cs", "sm2cs 1\nCreateDevice 1 1 A8R8G8B8\nPresent\nPresent\n");
