@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <system_error>
+#include <thread>
 #include <vector>
 
 #include "commands.h"
@@ -103,10 +104,38 @@ std::string fixed(double v, int decimals) {
 // ---------------------------------------------------------------------------------------------
 // sm2 replay
 
+// The numeric modes of a replay (docs/numerics.md): shader precision, transcendentals and the
+// sampler's filter weights. Threads default to every core (the image does not depend on them).
+struct NumericCliOptions {
+    unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    std::string precision = "fp32";
+    std::string transcendentals = "exact";
+    std::string filter = "fixed8";
+
+    void add_to(CLI::App& cmd) {
+        cmd.add_option("--threads", threads, "Threads for tiles (default: all cores; the image does not depend on it)")
+            ->check(CLI::Range(1u, 256u));
+        cmd.add_option("--precision", precision,
+                       "Shader arithmetic: fp32 (default), fp24 (ps results as s16e7), fp16 (fp24 and _pp as s10e5)")
+            ->check(CLI::IsMember({"fp32", "fp24", "fp16"}));
+        cmd.add_option("--transcendentals", transcendentals, "exact (libm, default) or fast")
+            ->check(CLI::IsMember({"exact", "fast"}));
+        cmd.add_option("--filter", filter, "Filter weights: fixed8 (8-bit, as hardware; default) or exact")
+            ->check(CLI::IsMember({"fixed8", "exact"}));
+    }
+    void apply(runtime::DeviceOptions& d) const {
+        d.threads = threads;
+        if (precision != "fp32") d.precision.precision = emu::Precision::Fp24;
+        d.precision.partial_precision_fp16 = precision == "fp16";
+        if (transcendentals == "fast") d.precision.transcendentals = emu::Transcendentals::Fast;
+        d.filter_precision = filter == "exact" ? runtime::FilterPrecision::Exact : runtime::FilterPrecision::Fixed8;
+    }
+};
+
 struct ReplayCliOptions {
     std::string stream;
     std::string output;
-    unsigned threads = 1;
+    NumericCliOptions numeric;
     bool quiet = false;
 };
 
@@ -146,7 +175,7 @@ int run_replay(const ReplayCliOptions& o) {
     }
     runtime::DeviceOptions device_options;
     device_options.output_dir = o.output;
-    device_options.threads = o.threads;
+    o.numeric.apply(device_options);
     runtime::Device device(device_options);
 
     runtime::ReplayOptions options = replay_options(*loaded);
@@ -186,7 +215,7 @@ int run_replay(const ReplayCliOptions& o) {
 struct BenchCliOptions {
     std::string stream;
     unsigned repeat = 5;
-    unsigned threads = 1;
+    NumericCliOptions numeric;
 };
 
 std::string rate(double count, double seconds) {
@@ -209,7 +238,7 @@ int run_bench(const BenchCliOptions& o) {
     runs.reserve(o.repeat);
     for (unsigned i = 0; i < o.repeat; ++i) {
         runtime::DeviceOptions device_options;
-        device_options.threads = o.threads;
+        o.numeric.apply(device_options);
         device_options.write_image = [](const runtime::Surface&, const std::string&) {};  // in memory only
         runtime::Device device(device_options);
         runs.push_back(runtime::replay(device, loaded->stream, options));
@@ -224,8 +253,8 @@ int run_bench(const BenchCliOptions& o) {
 
     std::cout << loaded->file_name << ": " << median.calls << " calls, " << median.frames.size() << " frames, "
               << s.draws << " draws, " << s.vertices_shaded << " vertices, " << s.pixels_shaded
-              << " pixels shaded per run; " << o.repeat << " runs, " << o.threads << " thread"
-              << (o.threads == 1 ? "" : "s") << '\n'
+              << " pixels shaded per run; " << o.repeat << " runs, " << o.numeric.threads << " thread"
+              << (o.numeric.threads == 1 ? "" : "s") << '\n'
               << "time per run: median " << fixed(median.seconds * 1000.0, 3) << " ms, best "
               << fixed(best.seconds * 1000.0, 3) << " ms\n"
               << "frames/s: " << rate(static_cast<double>(median.frames.size()), median.seconds) << '\n'
@@ -236,7 +265,7 @@ int run_bench(const BenchCliOptions& o) {
         std::cout << "stage time per run: pipelines " << fixed(s.pipeline_seconds * 1000.0, 3) << " ms, vertex "
                   << fixed(s.vertex_seconds * 1000.0, 3) << " ms, setup " << fixed(s.setup_seconds * 1000.0, 3)
                   << " ms, pixel " << fixed(s.pixel_seconds * 1000.0, 3) << " ms"
-                  << (o.threads > 1 ? " (summed over threads)" : "") << '\n';
+                  << (o.numeric.threads > 1 ? " (summed over threads)" : "") << '\n';
     if (!runs.front().ok()) {
         print_diagnostics(runs.front().diagnostics);
         std::cerr << "sm2 bench: " << runs.front().refused << " of " << runs.front().calls << " calls refused\n";
@@ -255,8 +284,7 @@ void add_replay_commands(CLI::App& app, int& status) {
     replay->add_option("stream", r->stream, "Command stream, text (.sm2cs) or binary (.sm2cb); '-' for stdin")
         ->required();
     replay->add_option("-o,--output", r->output, "Output folder (created if missing)")->required();
-    replay->add_option("--threads", r->threads, "Threads for tiles (output does not depend on it)")
-        ->check(CLI::Range(1u, 256u));
+    r->numeric.add_to(*replay);
     replay->add_flag("-q,--quiet", r->quiet, "Print only the summary (no per-frame lines, no progress)");
     replay->callback([r, &status] { status = run_replay(*r); });
 
@@ -267,7 +295,7 @@ void add_replay_commands(CLI::App& app, int& status) {
     bench->add_option("stream", b->stream, "Command stream, text (.sm2cs) or binary (.sm2cb); '-' for stdin")
         ->required();
     bench->add_option("--repeat", b->repeat, "Runs (default 5)")->check(CLI::Range(1u, 100000u));
-    bench->add_option("--threads", b->threads, "Threads for tiles")->check(CLI::Range(1u, 256u));
+    b->numeric.add_to(*bench);
     bench->callback([b, &status] { status = run_bench(*b); });
 }
 
