@@ -361,16 +361,20 @@ std::string draw_error(const char* call, const CallResult& result) { return std:
 
 }  // namespace
 
+std::vector<VertexStream> Device::bound_streams() const {
+    std::vector<VertexStream> streams(kMaxVertexStreams);
+    for (unsigned s = 0; s < kMaxVertexStreams; ++s)
+        if (streams_[s].buffer) streams[s] = VertexStream{streams_[s].buffer->bytes, streams_[s].offset, streams_[s].stride};
+    return streams;
+}
+
 CallResult Device::draw_primitive(uint32_t type, uint32_t start_vertex, uint32_t primitive_count) {
     const auto pt = primitive_type_from(type);
     const auto count = pt ? vertices_for(*pt, primitive_count) : std::nullopt;
     if (!count) return CallResult::fail("DrawPrimitive: bad primitive type or count");
     auto ids = sequential_vertices(start_vertex, *count);
     if (!ids.ok()) return CallResult::fail("DrawPrimitive: " + ids.error);
-    std::vector<VertexStream> streams(kMaxVertexStreams);
-    for (unsigned s = 0; s < kMaxVertexStreams; ++s)
-        if (streams_[s].buffer) streams[s] = VertexStream{streams_[s].buffer->bytes, streams_[s].offset, streams_[s].stride};
-    auto result = run_draw(type, primitive_count, std::move(ids.vertices), streams);
+    auto result = run_draw(type, primitive_count, std::move(ids.vertices), bound_streams());
     return result ? result : CallResult::fail(draw_error("DrawPrimitive", result));
 }
 
@@ -383,10 +387,7 @@ CallResult Device::draw_indexed_primitive(uint32_t type, int32_t base_vertex, ui
     if (!indices_) return CallResult::fail("DrawIndexedPrimitive: no index buffer is set");
     auto ids = read_indices(indices_->bytes, indices_->index_format, start_index, *count, base_vertex);
     if (!ids.ok()) return CallResult::fail("DrawIndexedPrimitive: " + ids.error);
-    std::vector<VertexStream> streams(kMaxVertexStreams);
-    for (unsigned s = 0; s < kMaxVertexStreams; ++s)
-        if (streams_[s].buffer) streams[s] = VertexStream{streams_[s].buffer->bytes, streams_[s].offset, streams_[s].stride};
-    auto result = run_draw(type, primitive_count, std::move(ids.vertices), streams);
+    auto result = run_draw(type, primitive_count, std::move(ids.vertices), bound_streams());
     return result ? result : CallResult::fail(draw_error("DrawIndexedPrimitive", result));
 }
 

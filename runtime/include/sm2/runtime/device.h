@@ -179,6 +179,7 @@ private:
     CallResult run_draw(uint32_t type, uint32_t primitive_count, std::vector<uint32_t> draw_vertices,
                         std::span<const VertexStream> streams);
     Surface* render_target_surface(unsigned index) const;
+    std::vector<VertexStream> bound_streams() const;  // SetStreamSource bindings, as spans
 
     DeviceOptions options_;
     std::map<std::string, std::shared_ptr<Resource>> resources_;
