@@ -325,7 +325,19 @@ CallResult Device::run_draw(uint32_t type_value, uint32_t primitive_count, std::
     const unsigned thread_count =
         static_cast<unsigned>(std::clamp<size_t>(options_.threads, 1, std::max<size_t>(busy.size(), 1)));
     std::vector<TileWorker> workers(thread_count);
-    for (auto& w : workers) w.sampler = sampler_;
+    // A texture that is also a bound render target (undefined in D3D9) is sampled as it was
+    // before the draw: the tiles read a snapshot, so the result does not depend on the order in
+    // which threads write it.
+    std::vector<Texture> snapshots;
+    snapshots.reserve(kMaxSamplers);
+    TextureSampler sampler = sampler_;
+    for (unsigned stage = 0; stage < kMaxSamplers; ++stage) {
+        const auto& bound = textures_[stage];
+        if (!bound || std::find(render_targets_.begin(), render_targets_.end(), bound) == render_targets_.end()) continue;
+        snapshots.push_back(bound->texture);
+        sampler.set_texture(stage, &snapshots.back());
+    }
+    for (auto& w : workers) w.sampler = sampler;
     std::atomic<size_t> next{0};
     auto work = [&](TileWorker& w) {
         for (size_t k = next.fetch_add(1); k < busy.size(); k = next.fetch_add(1)) {

@@ -362,6 +362,27 @@ TEST_F(DeviceTest, ExtremeCoordinatesStayInsideTheViewport) {
             }
 }
 
+// A texture sampled while it is the render target (undefined in D3D9) is read as it was before
+// the draw, whatever the thread count. The target is cleared to red; each pixel samples its right
+// neighbour's texel (u = (x + 1.5)/8, v = (y + 0.5)/8, point, wrap) and writes half of it: every
+// pixel gets 0x80800000, none reads a neighbour already halved by this draw.
+TEST_F(DeviceTest, RenderTargetSampledDuringItsOwnDrawReadsTheOldContents) {
+    for (unsigned threads : {1u, 3u}) {
+        make(8, 8, std::nullopt, threads);
+        ASSERT_TRUE(device->create_texture("rtt", 8, 8, 1, Format::A8R8G8B8, true));
+        ASSERT_TRUE(device->set_render_target(0, "rtt"));
+        ASSERT_TRUE(device->clear(kClearTarget, 0xFFFF0000u, 1.0f, 0));
+        ASSERT_TRUE(device->create_pixel_shader(
+            "half", program("ps_2_0\ndef c0, 0.5, 0.5, 0.5, 0.5\ndcl t0.xy\ndcl_2d s0\ntexld r0, t0, s0\nmul r0, r0, c0\nmov oC0, r0\n")));
+        ASSERT_TRUE(device->set_pixel_shader("half"));
+        ASSERT_TRUE(device->set_texture(0, "rtt"));
+        ASSERT_TRUE(draw(kTriangleStrip, 2, {{-1, 1, 0, 1, 1.5f / 8, 0.5f / 8, 0, 1}, {1, 1, 0, 1, 9.5f / 8, 0.5f / 8, 0, 1},
+                                             {-1, -1, 0, 1, 1.5f / 8, 8.5f / 8, 0, 1}, {1, -1, 0, 1, 9.5f / 8, 8.5f / 8, 0, 1}}));
+        for (uint32_t y = 0; y < 8; ++y)
+            for (uint32_t x = 0; x < 8; ++x) ASSERT_EQ(pixel(x, y, "rtt"), 0x80800000u) << x << "," << y << " threads " << threads;
+    }
+}
+
 // Tiles are processed by any number of threads with identical bytes: a 100x70 target (4 x 3
 // tiles, partial ones at the edges) full of overlapping blended triangles.
 TEST_F(DeviceTest, ThreadCountDoesNotChangeTheImage) {
