@@ -111,6 +111,7 @@ struct NumericCliOptions {
     std::string precision = "fp32";
     std::string transcendentals = "exact";
     std::string filter = "fixed8";
+    unsigned max_slots = 0;
 
     void add_to(CLI::App& cmd) {
         cmd.add_option("--threads", threads, "Threads for tiles (default: all cores; the image does not depend on it)")
@@ -122,6 +123,10 @@ struct NumericCliOptions {
             ->check(CLI::IsMember({"exact", "fast"}));
         cmd.add_option("--filter", filter, "Filter weights: fixed8 (8-bit, as hardware; default) or exact")
             ->check(CLI::IsMember({"fixed8", "exact"}));
+        cmd.add_option("--max-slots", max_slots,
+                       "Instruction-slot limit shaders are validated against (default: the profile's; e.g. 512 "
+                       "for ps_2_x-size shaders)")
+            ->check(CLI::Range(1u, 65535u));
     }
     void apply(runtime::DeviceOptions& d) const {
         d.threads = threads;
@@ -129,6 +134,7 @@ struct NumericCliOptions {
         d.precision.partial_precision_fp16 = precision == "fp16";
         if (transcendentals == "fast") d.precision.transcendentals = emu::Transcendentals::Fast;
         d.filter_precision = filter == "exact" ? runtime::FilterPrecision::Exact : runtime::FilterPrecision::Fixed8;
+        d.max_instruction_slots = max_slots;
     }
 };
 

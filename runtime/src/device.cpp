@@ -201,7 +201,9 @@ CallResult Device::create_shader(const std::string& name, isa::Program program, 
         return CallResult::fail(std::string(call) + ": the program is a " +
                                 (program.version.is_vertex() ? "vertex" : "pixel") + " shader");
     if (resources_.count(name)) return CallResult::fail("a resource named '" + name + "' already exists");
-    auto violations = isa::validate(program);
+    isa::ValidationOptions validation;
+    validation.max_instruction_slots = options_.max_instruction_slots;
+    auto violations = isa::validate(program, validation);
     if (!violations.empty()) return CallResult::fail(std::string(call) + ": " + violations.front().message);
     auto object = std::make_shared<ShaderObject>();
     for (const auto& ins : program.instructions)

@@ -48,6 +48,17 @@ struct Replayed {
     ReplayResult result;
 };
 
+// A scene that needs a device option has `NN_name.options` beside it with the `sm2 replay`
+// flags (so far only `--max-slots N`, for ps_2_x-size shaders).
+unsigned max_slots_for(const std::string& file) {
+    std::ifstream in(kScenes / std::filesystem::path(file).replace_extension(".options"));
+    std::string flag;
+    unsigned value = 0;
+    while (in >> flag)
+        if (flag == "--max-slots") in >> value;
+    return value;
+}
+
 Replayed replay_scene(const std::string& file, unsigned threads) {
     Replayed out;
     std::ifstream in(kScenes / file, std::ios::binary);
@@ -61,6 +72,7 @@ Replayed replay_scene(const std::string& file, unsigned threads) {
     if (!parsed.ok()) return out;
     DeviceOptions options;
     options.threads = threads;
+    options.max_instruction_slots = max_slots_for(file);
     options.output_dir = "frames";  // any name: write_image keeps the surfaces instead
     options.write_image = [&out](const Surface& surface, const std::string& path) {
         out.images[std::filesystem::path(path).filename().string()] = surface;

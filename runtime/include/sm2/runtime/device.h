@@ -62,6 +62,9 @@ struct DeviceOptions {
     // is sm2 run's and is refused by draws) and the sampler's filter weights.
     emu::PrecisionOptions precision{};
     FilterPrecision filter_precision = FilterPrecision::Fixed8;
+    // Instruction-slot limit CreateVertexShader/CreatePixelShader validate against (0: the
+    // profile's, 256 vs / 96 ps); a larger value is a ps_2_x-size device for long shaders.
+    unsigned max_instruction_slots = 0;
 };
 
 struct DrawStatistics {
