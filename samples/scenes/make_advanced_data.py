@@ -608,6 +608,15 @@ def constants():
     out.append("# 20: view-projection, view row 2 (view-space z)")
     out.append(rows(vp20))
     out.append(rows([v20[2]], 1))
+    out.append("# 20: blur taps c0..c11 of passes 1-3: 12 points of a golden-angle spiral in the unit disk,")
+    out.append("#     turned by 0, 40 and 80 degrees, times Cmax / 2 / 256 (Cmax = 10 pixels)")
+    for turn in (0.0, 40.0, 80.0):
+        taps = []
+        for i in range(12):
+            rad = math.sqrt((i + 0.5) / 12)
+            ang = i * math.pi * (3 - math.sqrt(5)) + math.radians(turn)
+            taps.append(vec(rad * math.cos(ang) * 5 / 256, rad * math.sin(ang) * 5 / 256, 0, 0))
+        out.append("   ".join(taps))
     return "\n".join(out)
 
 
