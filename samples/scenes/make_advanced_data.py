@@ -539,7 +539,9 @@ def hdr_pixel(x, y, w, h):
     dist = math.sqrt(((u - 0.5) / 0.5) ** 2 + ((v - 0.37) / 0.6) ** 2)
     light = 0.35 / (0.15 + dist * dist * 3.0)
     mortar = abs((v * 12) % 1.0 - 0.5) > 0.46 or abs(((u * 8) + (0.5 if int(v * 12) % 2 else 0.0)) % 1.0 - 0.5) > 0.47
-    stone = 0.55 if mortar else 0.8 + 0.2 * math.sin(u * 91.0 + v * 53.0) * math.sin(v * 77.0)
+    row = int(v * 12)
+    block = int(u * 8 + (0.5 if row % 2 else 0.0))
+    stone = 0.55 if mortar else 0.75 + 0.25 * ((block * 7 + row * 13) % 5) / 4
     col = [0.75, 0.62, 0.48]
     if v > 0.8:  # floor with a coloured patch of sunlight through the window
         stone = 0.7
