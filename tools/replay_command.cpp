@@ -63,10 +63,13 @@ std::optional<LoadedStream> load_stream(const std::string& path, const char* com
 }
 
 // Shader text in a stream goes through the assembler (the runtime does not link it).
-runtime::ShaderAssembler stream_assembler(const std::string& file_name) {
-    return [file_name](std::string_view text) {
+// Heredoc shaders are validated here (errors keep their line in the heredoc) with the device's
+// slot limit, so --max-slots reaches them as it reaches bytecode.
+runtime::ShaderAssembler stream_assembler(const std::string& file_name, unsigned max_slots) {
+    return [file_name, max_slots](std::string_view text) {
         assembler::AssembleOptions options;
         options.file_name = file_name;
+        options.validation.max_instruction_slots = max_slots;
         auto assembled = assembler::assemble(text, options);
         runtime::AssembledShader out;
         if (assembled.program) {
@@ -83,11 +86,11 @@ runtime::ShaderAssembler stream_assembler(const std::string& file_name) {
     };
 }
 
-runtime::ReplayOptions replay_options(const LoadedStream& loaded) {
+runtime::ReplayOptions replay_options(const LoadedStream& loaded, unsigned max_slots) {
     runtime::ReplayOptions options;
     options.file_name = loaded.file_name;
     options.base_dir = loaded.base_dir;
-    options.assembler = stream_assembler(loaded.file_name);
+    options.assembler = stream_assembler(loaded.file_name, max_slots);
     return options;
 }
 
@@ -184,7 +187,7 @@ int run_replay(const ReplayCliOptions& o) {
     o.numeric.apply(device_options);
     runtime::Device device(device_options);
 
-    runtime::ReplayOptions options = replay_options(*loaded);
+    runtime::ReplayOptions options = replay_options(*loaded, o.numeric.max_slots);
     Progress progress(!o.quiet && isatty(STDERR_FILENO) != 0);
     options.progress = [&progress, &device](size_t done, size_t total) {
         progress.update(done, total, device.frames_presented());
@@ -238,7 +241,7 @@ std::string rate(double count, double seconds) {
 int run_bench(const BenchCliOptions& o) {
     auto loaded = load_stream(o.stream, "bench");
     if (!loaded) return kInvalidInput;
-    const runtime::ReplayOptions options = replay_options(*loaded);
+    const runtime::ReplayOptions options = replay_options(*loaded, o.numeric.max_slots);
 
     std::vector<runtime::ReplayResult> runs;
     runs.reserve(o.repeat);

@@ -30,9 +30,11 @@ namespace {
 const std::filesystem::path kScenes = std::filesystem::path(SM2_SOURCE_DIR) / "samples" / "scenes";
 const std::filesystem::path kGoldens = std::filesystem::path(SM2_SOURCE_DIR) / "tests" / "scenes" / "golden";
 
-AssembledShader assemble_shader(std::string_view text) {
+AssembledShader assemble_shader(std::string_view text, unsigned max_slots) {
     AssembledShader out;
-    auto r = assembler::assemble(text);
+    assembler::AssembleOptions options;
+    options.validation.max_instruction_slots = max_slots;
+    auto r = assembler::assemble(text, options);
     if (r.ok()) {
         out.program = std::move(*r.program);
     } else if (!r.diagnostics.empty()) {
@@ -81,7 +83,9 @@ Replayed replay_scene(const std::string& file, unsigned threads) {
     ReplayOptions replay_options;
     replay_options.file_name = file;
     replay_options.base_dir = kScenes.string();
-    replay_options.assembler = assemble_shader;
+    replay_options.assembler = [slots = options.max_instruction_slots](std::string_view source) {
+        return assemble_shader(source, slots);
+    };
     out.result = replay(device, *parsed.stream, replay_options);
     return out;
 }

@@ -386,6 +386,23 @@ TEST(CliReplay, RefusedCallsExit1WithFileLineAfterFinishingTheStream) {
     EXPECT_EQ(sm2("replay /nonexistent/s.sm2cs -o " + dir).status, 1);
 }
 
+// A pixel shader of 65 arithmetic slots (one over ps_2_0's 64) in a heredoc: refused by default
+// with its line inside the heredoc, accepted with --max-slots (a ps_2_x-size device).
+TEST(CliReplay, MaxSlotsReachesHeredocShaders) {
+    const std::string dir = make_dir("replay_slots");
+    const std::string stream = dir + "/long.sm2cs";
+    std::string text = "sm2cs 1\nCreateDevice 2 2 A8R8G8B8\nCreatePixelShader ps asm<<END\nps_2_0\ndef c0, 1, 1, 1, 1\nmov r0, c0\n";
+    for (int i = 0; i < 63; ++i) text += "add r0, r0, c0\n";
+    text += "mov oC0, r0\nEND\nPresent\n";
+    write_file(stream, text);
+    auto refused = sm2("replay " + stream + " -o " + dir + "/a --quiet");
+    EXPECT_EQ(refused.status, 1);
+    EXPECT_NE(refused.err.find("CreatePixelShader"), std::string::npos) << refused.err;
+    EXPECT_NE(refused.err.find("slot"), std::string::npos) << refused.err;
+    auto accepted = sm2("replay " + stream + " -o " + dir + "/b --quiet --max-slots 96");
+    EXPECT_EQ(accepted.status, 0) << accepted.err;
+}
+
 TEST(CliReplay, SampleScenesReplayWithoutDiagnostics) {
     const std::string dir = make_dir("replay_scenes");
     const std::string scenes = std::string(SM2_SOURCE_DIR) + "/samples/scenes/";
