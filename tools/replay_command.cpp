@@ -273,8 +273,8 @@ int run_bench(const BenchCliOptions& o) {
     if (s.draws > 0)
         std::cout << "stage time per run: pipelines " << fixed(s.pipeline_seconds * 1000.0, 3) << " ms, vertex "
                   << fixed(s.vertex_seconds * 1000.0, 3) << " ms, setup " << fixed(s.setup_seconds * 1000.0, 3)
-                  << " ms, pixel " << fixed(s.pixel_seconds * 1000.0, 3) << " ms"
-                  << (o.numeric.threads > 1 ? " (summed over threads)" : "") << '\n';
+                  << " ms, pixel " << fixed(s.pixel_seconds * 1000.0, 3) << " ms (wall time; pixel work runs on "
+                  << o.numeric.threads << " thread" << (o.numeric.threads == 1 ? "" : "s") << ")\n";
     if (!runs.front().ok()) {
         print_diagnostics(runs.front().diagnostics);
         std::cerr << "sm2 bench: " << runs.front().refused << " of " << runs.front().calls << " calls refused\n";
