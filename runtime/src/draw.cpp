@@ -144,6 +144,126 @@ void process_tile(const PixelPipeline& pipe, std::span<const PrimitiveSetup> set
     }
 }
 
+
+// Vertex stage: fetches each distinct vertex (in batches of 16 lanes), runs the vertex shader and
+// keeps what later stages read. Returns a fetch error (a read past a buffer), else "".
+std::string shade_vertices(const FetchPlan& plan, std::span<const VertexStream> streams,
+                           std::span<const uint32_t> vertices, const emu::Executable& vs,
+                           const emu::ConstantFile& constants, bool writes_point_size,
+                           std::vector<ClipVertex>& shaded) {
+    emu::Batch batch;
+    for (size_t first = 0; first < vertices.size(); first += emu::kBatchLanes) {
+        const size_t n = std::min<size_t>(emu::kBatchLanes, vertices.size() - first);
+        batch.reset();
+        std::string error = fetch(plan, streams, vertices.subspan(first, n), batch);
+        if (!error.empty()) return error;
+        emu::execute(vs, constants, batch, nullptr);
+        for (size_t l = 0; l < n; ++l) shaded[first + l] = vertex_from_batch(batch, static_cast<unsigned>(l), writes_point_size);
+    }
+    return {};
+}
+
+// Clipping and setup of every primitive, in draw order. `slots` maps a draw vertex to its
+// shaded vertex (the post-transform cache).
+std::vector<PrimitiveSetup> setup_primitives(PrimitiveType type, FillMode fill_mode, std::span<const Primitive> primitives,
+                                             std::span<const ClipVertex> shaded, std::span<const uint32_t> slots,
+                                             const ClipState& clip, const SetupState& state) {
+    std::vector<PrimitiveSetup> setups;
+    setups.reserve(primitives.size());
+    ClippedPolygon polygon;
+    for (const Primitive& p : primitives) {
+        const ClipVertex& v0 = shaded[slots[p.v[0]]];
+        const ClipVertex& provoking = shaded[slots[p.provoking]];
+        PrimitiveSetup s;
+        if (type == PrimitiveType::PointList) {
+            if (point_visible(v0, clip) && setup_point(v0, state, s)) setups.push_back(s);
+            continue;
+        }
+        const ClipVertex& v1 = shaded[slots[p.v[1]]];
+        if (type == PrimitiveType::LineList || type == PrimitiveType::LineStrip) {
+            std::array<ClipVertex, 2> ends;
+            if (clip_line(v0, v1, clip, ends) != ClipResult::Outside && setup_line(ends[0], ends[1], provoking, state, s))
+                setups.push_back(s);
+            continue;
+        }
+        const ClipVertex& v2 = shaded[slots[p.v[2]]];
+        const ClipResult result = clip_triangle(v0, v1, v2, clip, polygon);
+        if (result == ClipResult::Outside) continue;
+        if (fill_mode != FillMode::Solid) {
+            const std::array<ClipVertex, 3> triangle{v0, v1, v2};
+            const std::span<const ClipVertex> vertices =
+                result == ClipResult::Inside ? std::span<const ClipVertex>(triangle)
+                                             : std::span<const ClipVertex>(polygon.vertices.data(), polygon.count);
+            (void)setup_fill_mode(vertices, provoking, fill_mode, state, setups);
+            continue;
+        }
+        if (result == ClipResult::Inside) {
+            if (setup_triangle(v0, v1, v2, provoking, state, s)) setups.push_back(s);
+            continue;
+        }
+        for (unsigned i = 1; i + 1 < polygon.count; ++i)
+            if (setup_triangle(polygon.vertices[0], polygon.vertices[i], polygon.vertices[i + 1], provoking, state, s))
+                setups.push_back(s);
+    }
+    return setups;
+}
+
+// Set-up primitives by kTileSize tile, in draw order inside each tile.
+struct TileBins {
+    int32_t tiles_x = 0;
+    std::vector<std::vector<uint32_t>> primitives;  // per tile, row-major
+    std::vector<size_t> busy;                       // tiles with at least one primitive
+};
+
+TileBins bin_by_tile(std::span<const PrimitiveSetup> setups, uint32_t width, uint32_t height) {
+    TileBins bins;
+    bins.tiles_x = static_cast<int32_t>((width + kTileSize - 1) / kTileSize);
+    const int32_t tiles_y = static_cast<int32_t>((height + kTileSize - 1) / kTileSize);
+    bins.primitives.resize(static_cast<size_t>(bins.tiles_x) * static_cast<size_t>(tiles_y));
+    for (uint32_t i = 0; i < setups.size(); ++i) {
+        const PixelRect& b = setups[i].bounds;
+        if (b.empty()) continue;
+        const int32_t tx0 = std::max(0, b.left / kTileSize), tx1 = std::min(bins.tiles_x - 1, (b.right - 1) / kTileSize);
+        const int32_t ty0 = std::max(0, b.top / kTileSize), ty1 = std::min(tiles_y - 1, (b.bottom - 1) / kTileSize);
+        for (int32_t ty = ty0; ty <= ty1; ++ty)
+            for (int32_t tx = tx0; tx <= tx1; ++tx)
+                bins.primitives[static_cast<size_t>(ty) * static_cast<size_t>(bins.tiles_x) + static_cast<size_t>(tx)].push_back(i);
+    }
+    for (size_t t = 0; t < bins.primitives.size(); ++t)
+        if (!bins.primitives[t].empty()) bins.busy.push_back(t);
+    return bins;
+}
+
+// Tiles are independent (disjoint pixels and bytes): workers take whole tiles from a shared
+// counter, and any number of threads gives the same bytes. Returns the pixels shaded.
+uint64_t run_tiles(const PixelPipeline& pipe, std::span<const PrimitiveSetup> setups, const TileBins& bins,
+                   const TextureSampler& sampler, unsigned threads) {
+    const unsigned thread_count =
+        static_cast<unsigned>(std::clamp<size_t>(threads, 1, std::max<size_t>(bins.busy.size(), 1)));
+    std::vector<TileWorker> workers(thread_count);
+    for (auto& w : workers) w.sampler = sampler;
+    std::atomic<size_t> next{0};
+    auto work = [&](TileWorker& w) {
+        for (size_t k = next.fetch_add(1); k < bins.busy.size(); k = next.fetch_add(1)) {
+            const size_t t = bins.busy[k];
+            const auto tx = static_cast<int32_t>(t % static_cast<size_t>(bins.tiles_x));
+            const auto ty = static_cast<int32_t>(t / static_cast<size_t>(bins.tiles_x));
+            process_tile(pipe, setups, bins.primitives[t], tile_rect(tx, ty), w);
+        }
+    };
+    if (thread_count == 1) {
+        work(workers[0]);
+    } else {
+        std::vector<std::jthread> pool;
+        pool.reserve(thread_count - 1);
+        for (unsigned i = 1; i < thread_count; ++i) pool.emplace_back(work, std::ref(workers[i]));
+        work(workers[0]);
+    }  // the jthreads join here
+    uint64_t pixels = 0;
+    for (const auto& w : workers) pixels += w.pixels_shaded;
+    return pixels;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -215,22 +335,11 @@ CallResult Device::run_draw(uint32_t type_value, uint32_t primitive_count, std::
         if ((plan.plan->streams_used >> s & 1u) && (s >= streams.size() || streams[s].stride == 0))
             return CallResult::fail("stream " + std::to_string(s) + " is read by the declaration but not set");
     const UniqueVertices unique = deduplicate(draw_vertices);
-    const emu::ConstantFile vs_constants = vs->bind_constants(vs_f_);
     const bool writes_point_size = (vs->components_written()[slot::kPointSize] & 1u) != 0;
     std::vector<ClipVertex> shaded(unique.vertices.size());
-    {
-        emu::Batch batch;
-        for (size_t first = 0; first < unique.vertices.size(); first += emu::kBatchLanes) {
-            const size_t n = std::min<size_t>(emu::kBatchLanes, unique.vertices.size() - first);
-            batch.reset();
-            const std::string fetch_error =
-                fetch(*plan.plan, streams, std::span<const uint32_t>(unique.vertices).subspan(first, n), batch);
-            if (!fetch_error.empty()) return CallResult::fail("vertex fetch: " + fetch_error);
-            emu::execute(*vs, vs_constants, batch, nullptr);
-            for (size_t l = 0; l < n; ++l)
-                shaded[first + l] = vertex_from_batch(batch, static_cast<unsigned>(l), writes_point_size);
-        }
-    }
+    const std::string fetch_error =
+        shade_vertices(*plan.plan, streams, unique.vertices, *vs, vs->bind_constants(vs_f_), writes_point_size, shaded);
+    if (!fetch_error.empty()) return CallResult::fail("vertex fetch: " + fetch_error);
 
     stats_.vertex_seconds += lap(clock);
 
@@ -244,43 +353,8 @@ CallResult Device::run_draw(uint32_t type_value, uint32_t primitive_count, std::
     SetupState setup_state = make_setup_state(render_state_, viewport_, rt0->width(), rt0->height(), scissor_);
     setup_state.varying_mask = varyings;
     setup_state.shader_point_size = writes_point_size;
-    std::vector<PrimitiveSetup> setups;
-    setups.reserve(assembled.primitives.size());
-    ClippedPolygon polygon;
-    for (const Primitive& p : assembled.primitives) {
-        const ClipVertex& v0 = shaded[unique.slots[p.v[0]]];
-        const ClipVertex& provoking = shaded[unique.slots[p.provoking]];
-        PrimitiveSetup s;
-        if (*type == PrimitiveType::PointList) {
-            if (point_visible(v0, clip) && setup_point(v0, setup_state, s)) setups.push_back(s);
-            continue;
-        }
-        const ClipVertex& v1 = shaded[unique.slots[p.v[1]]];
-        if (*type == PrimitiveType::LineList || *type == PrimitiveType::LineStrip) {
-            std::array<ClipVertex, 2> ends;
-            if (clip_line(v0, v1, clip, ends) != ClipResult::Outside && setup_line(ends[0], ends[1], provoking, setup_state, s))
-                setups.push_back(s);
-            continue;
-        }
-        const ClipVertex& v2 = shaded[unique.slots[p.v[2]]];
-        const ClipResult result = clip_triangle(v0, v1, v2, clip, polygon);
-        if (result == ClipResult::Outside) continue;
-        if (render_state_.fill_mode != FillMode::Solid) {
-            const std::array<ClipVertex, 3> triangle{v0, v1, v2};
-            const std::span<const ClipVertex> vertices =
-                result == ClipResult::Inside ? std::span<const ClipVertex>(triangle)
-                                             : std::span<const ClipVertex>(polygon.vertices.data(), polygon.count);
-            (void)setup_fill_mode(vertices, provoking, render_state_.fill_mode, setup_state, setups);
-            continue;
-        }
-        if (result == ClipResult::Inside) {
-            if (setup_triangle(v0, v1, v2, provoking, setup_state, s)) setups.push_back(s);
-            continue;
-        }
-        for (unsigned i = 1; i + 1 < polygon.count; ++i)
-            if (setup_triangle(polygon.vertices[0], polygon.vertices[i], polygon.vertices[i + 1], provoking, setup_state, s))
-                setups.push_back(s);
-    }
+    const std::vector<PrimitiveSetup> setups =
+        setup_primitives(*type, render_state_.fill_mode, assembled.primitives, shaded, unique.slots, clip, setup_state);
 
     // Pixel pipeline for this draw.
     PixelPipeline pipe;
@@ -303,28 +377,10 @@ CallResult Device::run_draw(uint32_t type_value, uint32_t primitive_count, std::
     pipe.early_depth_stencil = merger.depth_stencil.active() && !pipe.merge_template.shader_depth && !kills &&
                                !merger.alpha_test;
 
-    // Bin by tile, keeping draw order inside each tile.
-    const int32_t tiles_x = static_cast<int32_t>((rt0->width() + kTileSize - 1) / kTileSize);
-    const int32_t tiles_y = static_cast<int32_t>((rt0->height() + kTileSize - 1) / kTileSize);
-    std::vector<std::vector<uint32_t>> bins(static_cast<size_t>(tiles_x) * static_cast<size_t>(tiles_y));
-    for (uint32_t i = 0; i < setups.size(); ++i) {
-        const PixelRect& b = setups[i].bounds;
-        if (b.empty()) continue;
-        const int32_t tx0 = std::max(0, b.left / kTileSize), tx1 = std::min(tiles_x - 1, (b.right - 1) / kTileSize);
-        const int32_t ty0 = std::max(0, b.top / kTileSize), ty1 = std::min(tiles_y - 1, (b.bottom - 1) / kTileSize);
-        for (int32_t ty = ty0; ty <= ty1; ++ty)
-            for (int32_t tx = tx0; tx <= tx1; ++tx) bins[static_cast<size_t>(ty) * tiles_x + tx].push_back(i);
-    }
-    std::vector<size_t> busy;
-    for (size_t t = 0; t < bins.size(); ++t)
-        if (!bins[t].empty()) busy.push_back(t);
+    const TileBins bins = bin_by_tile(setups, rt0->width(), rt0->height());
 
     stats_.setup_seconds += lap(clock);
 
-    // Tiles are independent (disjoint pixels): any number of threads gives the same bytes.
-    const unsigned thread_count =
-        static_cast<unsigned>(std::clamp<size_t>(options_.threads, 1, std::max<size_t>(busy.size(), 1)));
-    std::vector<TileWorker> workers(thread_count);
     // A texture that is also a bound render target (undefined in D3D9) is sampled as it was
     // before the draw: the tiles read a snapshot, so the result does not depend on the order in
     // which threads write it.
@@ -337,30 +393,12 @@ CallResult Device::run_draw(uint32_t type_value, uint32_t primitive_count, std::
         snapshots.push_back(bound->texture);
         sampler.set_texture(stage, &snapshots.back());
     }
-    for (auto& w : workers) w.sampler = sampler;
-    std::atomic<size_t> next{0};
-    auto work = [&](TileWorker& w) {
-        for (size_t k = next.fetch_add(1); k < busy.size(); k = next.fetch_add(1)) {
-            const size_t t = busy[k];
-            const int32_t tx = static_cast<int32_t>(t % static_cast<size_t>(tiles_x));
-            const int32_t ty = static_cast<int32_t>(t / static_cast<size_t>(tiles_x));
-            process_tile(pipe, setups, bins[t], tile_rect(tx, ty), w);
-        }
-    };
-    if (thread_count == 1) {
-        work(workers[0]);
-    } else {
-        std::vector<std::jthread> threads;
-        threads.reserve(thread_count - 1);
-        for (unsigned i = 1; i < thread_count; ++i) threads.emplace_back(work, std::ref(workers[i]));
-        work(workers[0]);
-    }
+    stats_.pixels_shaded += run_tiles(pipe, setups, bins, sampler, options_.threads);
 
     stats_.pixel_seconds += lap(clock);
     ++stats_.draws;
     stats_.vertices_shaded += unique.vertices.size();
     stats_.primitives += assembled.primitives.size();
-    for (const auto& w : workers) stats_.pixels_shaded += w.pixels_shaded;
     return {};
 }
 
