@@ -423,6 +423,19 @@ TEST(CliReplay, BinaryStreamsReplayToo) {
     EXPECT_TRUE(exists(dir + "/out/frame_0001.png"));
 }
 
+// A captured scene with side files and heredocs, packed to the binary form (which carries the
+// side files' bytes) and replayed from a folder without them, draws the same frames.
+TEST(CliReplay, PackedSceneReplaysToTheSameFrames) {
+    const std::string dir = make_dir("replay_packed");
+    const std::string scene = std::string(SM2_SOURCE_DIR) + "/samples/scenes/14_textured_phong.sm2cs";
+    ASSERT_EQ(sm2("cs pack " + scene + " -o " + dir + "/scene.sm2cb").status, 0);
+    auto text = sm2("replay " + scene + " -o " + dir + "/text --quiet");
+    ASSERT_EQ(text.status, 0) << text.err;
+    auto binary = sm2("replay " + dir + "/scene.sm2cb -o " + dir + "/binary --quiet");
+    ASSERT_EQ(binary.status, 0) << binary.err;
+    EXPECT_EQ(sm2("diff " + dir + "/text/frame_0000.png " + dir + "/binary/frame_0000.png").status, 0);
+}
+
 TEST(CliReplay, BadArgumentsAreStatus2) {
     EXPECT_EQ(sm2("replay").status, 2);                         // no stream
     EXPECT_EQ(sm2("replay s.sm2cs").status, 2);                 // no -o
