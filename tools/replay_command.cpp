@@ -15,6 +15,7 @@
 
 #include "commands.h"
 #include "io.h"
+#include "stream_io.h"
 #include "sm2/assembler/assembler.h"
 #include "sm2/runtime/command_stream.h"
 #include "sm2/runtime/device.h"
@@ -25,42 +26,6 @@ namespace sm2::tools {
 namespace {
 
 namespace cs = runtime::cs;
-
-struct LoadedStream {
-    cs::Stream stream;
-    std::string file_name;  // for diagnostics
-    std::string base_dir;   // side files and LoadTexture paths are relative to it
-};
-
-// Reads a stream in either form; prints the error and returns nullopt on failure.
-std::optional<LoadedStream> load_stream(const std::string& path, const char* command) {
-    std::string error;
-    auto bytes = read_input(path, error);
-    if (!bytes) {
-        std::cerr << "sm2 " << command << ": " << error << '\n';
-        return std::nullopt;
-    }
-    LoadedStream loaded;
-    loaded.file_name = display_name(path);
-    loaded.base_dir = path == "-" ? "." : std::filesystem::path(path).parent_path().string();
-    if (loaded.base_dir.empty()) loaded.base_dir = ".";
-    cs::ParseResult result;
-    if (cs::looks_packed(*bytes)) {
-        result = cs::unpack(*bytes);
-        if (result.error) result.error->file = loaded.file_name;
-    } else {
-        cs::TextOptions options;
-        options.file_name = loaded.file_name;
-        options.base_dir = loaded.base_dir;
-        result = cs::parse_text({reinterpret_cast<const char*>(bytes->data()), bytes->size()}, options);
-    }
-    if (!result.ok()) {
-        std::cerr << result.error->to_string() << '\n';
-        return std::nullopt;
-    }
-    loaded.stream = std::move(*result.stream);
-    return loaded;
-}
 
 // Shader text in a stream goes through the assembler (the runtime does not link it).
 // Heredoc shaders are validated here (errors keep their line in the heredoc) with the device's

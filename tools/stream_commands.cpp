@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "io.h"
+#include "stream_io.h"
 #include "sm2/runtime/command_stream.h"
 
 namespace sm2::tools {
@@ -14,37 +15,12 @@ namespace {
 
 namespace cs = runtime::cs;
 
-// Reads a stream in either form; prints the error and returns nullopt on failure.
-std::optional<cs::Stream> load_stream(const std::string& path) {
-    std::string error;
-    auto bytes = read_input(path, error);
-    if (!bytes) {
-        std::cerr << "sm2 cs: " << error << '\n';
-        return std::nullopt;
-    }
-    cs::ParseResult result;
-    if (cs::looks_packed(*bytes)) {
-        result = cs::unpack(*bytes);
-        if (result.error) result.error->file = display_name(path);
-    } else {
-        cs::TextOptions options;
-        options.file_name = display_name(path);
-        options.base_dir = path == "-" ? "." : std::filesystem::path(path).parent_path().string();
-        if (options.base_dir.empty()) options.base_dir = ".";
-        result = cs::parse_text({reinterpret_cast<const char*>(bytes->data()), bytes->size()}, options);
-    }
-    if (!result.ok()) {
-        std::cerr << result.error->to_string() << '\n';
-        return std::nullopt;
-    }
-    return std::move(*result.stream);
-}
-
 int run_pack(const std::string& input, const std::string& output) {
-    auto stream = load_stream(input);
-    if (!stream) return kInvalidInput;
+    auto loaded = load_stream(input, "cs");
+    if (!loaded) return kInvalidInput;
+    const cs::Stream& stream = loaded->stream;
     std::string error;
-    if (!write_output(output, cs::pack(*stream), error)) {
+    if (!write_output(output, cs::pack(stream), error)) {
         std::cerr << "sm2 cs pack: " << error << '\n';
         return kInvalidInput;
     }
@@ -52,10 +28,11 @@ int run_pack(const std::string& input, const std::string& output) {
 }
 
 int run_dump(const std::string& input, const std::string& output) {
-    auto stream = load_stream(input);
-    if (!stream) return kInvalidInput;
+    auto loaded = load_stream(input, "cs");
+    if (!loaded) return kInvalidInput;
+    const cs::Stream& stream = loaded->stream;
     std::string error;
-    if (!write_output(output, cs::to_text(*stream), error)) {
+    if (!write_output(output, cs::to_text(stream), error)) {
         std::cerr << "sm2 cs dump: " << error << '\n';
         return kInvalidInput;
     }
