@@ -15,8 +15,8 @@
 
 #include "commands.h"
 #include "io.h"
+#include "stream_assembler.h"
 #include "stream_io.h"
-#include "sm2/assembler/assembler.h"
 #include "sm2/runtime/command_stream.h"
 #include "sm2/runtime/device.h"
 #include "sm2/runtime/replay.h"
@@ -27,35 +27,11 @@ namespace {
 
 namespace cs = runtime::cs;
 
-// Shader text in a stream goes through the assembler (the runtime does not link it).
-// Heredoc shaders are validated here (errors keep their line in the heredoc) with the device's
-// slot limit, so --max-slots reaches them as it reaches bytecode.
-runtime::ShaderAssembler stream_assembler(const std::string& file_name, unsigned max_slots) {
-    return [file_name, max_slots](std::string_view text) {
-        assembler::AssembleOptions options;
-        options.file_name = file_name;
-        options.validation.max_instruction_slots = max_slots;
-        auto assembled = assembler::assemble(text, options);
-        runtime::AssembledShader out;
-        if (assembled.program) {
-            out.program = std::move(assembled.program);
-            return out;
-        }
-        for (const auto& d : assembled.diagnostics)
-            if (d.severity == assembler::Severity::Error) {
-                out.error = d.message;
-                out.line = d.line;
-                break;
-            }
-        return out;
-    };
-}
-
 runtime::ReplayOptions replay_options(const LoadedStream& loaded, unsigned max_slots) {
     runtime::ReplayOptions options;
     options.file_name = loaded.file_name;
     options.base_dir = loaded.base_dir;
-    options.assembler = stream_assembler(loaded.file_name, max_slots);
+    options.assembler = stream_assembler(max_slots);
     return options;
 }
 

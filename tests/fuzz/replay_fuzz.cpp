@@ -8,7 +8,7 @@
 #include <span>
 #include <string_view>
 
-#include "sm2/assembler/assembler.h"
+#include "tools/stream_assembler.h"
 #include "sm2/runtime/command_stream.h"
 #include "sm2/runtime/replay.h"
 
@@ -46,13 +46,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     Device device;  // no output_dir: Present writes nothing
     ReplayOptions options;
     options.base_dir = "/nonexistent";  // LoadTexture finds nothing
-    options.assembler = [](std::string_view text) {
-        AssembledShader out;
-        auto r = assembler::assemble(text);
-        if (r.ok()) out.program = std::move(*r.program);
-        else out.error = "does not assemble";
-        return out;
-    };
+    options.assembler = tools::stream_assembler();
     (void)replay(device, *parsed.stream, options);
     return 0;
 }

@@ -7,24 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "sm2/assembler/assembler.h"
+#include "tools/stream_assembler.h"
 #include "sm2/runtime/replay.h"
 
 namespace sm2::runtime {
 namespace {
-
-ShaderAssembler draw_test_assembler() {
-    return [](std::string_view text) {
-        auto assembled = assembler::assemble(text);
-        AssembledShader out;
-        if (assembled.program) out.program = std::move(assembled.program);
-        else if (!assembled.diagnostics.empty()) {
-            out.error = assembled.diagnostics.front().message;
-            out.line = assembled.diagnostics.front().line;
-        }
-        return out;
-    };
-}
 
 // A 4x4 back buffer cleared to opaque black, a pass-through vertex shader, a pixel shader
 // writing c0 = (1, 0.5, 0, 1), culling off.
@@ -69,7 +56,7 @@ Outcome replay_text(const std::string& body) {
     Device device;
     ReplayOptions options;
     options.file_name = "d.sm2cs";
-    options.assembler = draw_test_assembler();
+    options.assembler = tools::stream_assembler();
     out.result = replay(device, *parsed.stream, options);
     const Surface* back = device.surface("backbuffer");
     out.pixels.resize(back->bytes().size());

@@ -14,31 +14,13 @@
 #include <string>
 #include <vector>
 
-#include "sm2/assembler/assembler.h"
+#include "tools/stream_assembler.h"
 #include "sm2/runtime/image_io.h"
 
 namespace sm2::runtime {
 namespace {
 
 namespace fs = std::filesystem;
-
-ShaderAssembler test_assembler() {
-    return [](std::string_view text) {
-        auto assembled = assembler::assemble(text);
-        AssembledShader out;
-        if (assembled.program) {
-            out.program = std::move(assembled.program);
-            return out;
-        }
-        for (const auto& d : assembled.diagnostics)
-            if (d.severity == assembler::Severity::Error) {
-                out.error = d.message;
-                out.line = d.line;
-                break;
-            }
-        return out;
-    };
-}
 
 std::vector<uint8_t> bytes_of(const Surface* s) {
     std::vector<uint8_t> out;
@@ -70,7 +52,7 @@ protected:
         ReplayOptions options;
         options.file_name = "t.sm2cs";
         options.base_dir = dir_.string();
-        options.assembler = test_assembler();
+        options.assembler = tools::stream_assembler();
         return options;
     }
 

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "sm2/assembler/assembler.h"
+#include "tools/stream_assembler.h"
 #include "sm2/runtime/command_stream.h"
 #include "sm2/runtime/image_io.h"
 #include "sm2/runtime/replay.h"
@@ -30,20 +30,6 @@ namespace {
 
 const std::filesystem::path kScenes = std::filesystem::path(SM2_SOURCE_DIR) / "samples" / "scenes";
 const std::filesystem::path kGoldens = std::filesystem::path(SM2_SOURCE_DIR) / "tests" / "scenes" / "golden";
-
-AssembledShader assemble_shader(std::string_view text, unsigned max_slots) {
-    AssembledShader out;
-    assembler::AssembleOptions options;
-    options.validation.max_instruction_slots = max_slots;
-    auto r = assembler::assemble(text, options);
-    if (r.ok()) {
-        out.program = std::move(*r.program);
-    } else if (!r.diagnostics.empty()) {
-        out.error = r.diagnostics.front().message;
-        out.line = r.diagnostics.front().line;
-    }
-    return out;
-}
 
 // Every Present and SaveSurface of a replay, kept in memory by file name.
 struct Replayed {
@@ -85,9 +71,7 @@ Replayed replay_scene(const std::string& file, unsigned threads) {
     ReplayOptions replay_options;
     replay_options.file_name = file;
     replay_options.base_dir = kScenes.string();
-    replay_options.assembler = [slots = options.max_instruction_slots](std::string_view source) {
-        return assemble_shader(source, slots);
-    };
+    replay_options.assembler = tools::stream_assembler(options.max_instruction_slots);
     out.result = replay(*out.device, *parsed.stream, replay_options);
     return out;
 }
