@@ -268,10 +268,8 @@ uint64_t run_tiles(const PixelPipeline& pipe, std::span<const PrimitiveSetup> se
 
 // ---------------------------------------------------------------------------------------------
 
-CallResult Device::run_draw(uint32_t type_value, uint32_t primitive_count, std::vector<uint32_t> draw_vertices,
+CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::vector<uint32_t> draw_vertices,
                             std::span<const VertexStream> streams) {
-    const auto type = primitive_type_from(type_value);
-    if (!type) return CallResult::fail("primitive type " + std::to_string(type_value) + " is not a D3DPRIMITIVETYPE");
     if (!in_scene_) return CallResult::fail("draw outside BeginScene/EndScene");
     if (!declaration_) return CallResult::fail("no vertex declaration is set");
     if (!vertex_shader_)
@@ -296,7 +294,7 @@ CallResult Device::run_draw(uint32_t type_value, uint32_t primitive_count, std::
         targets.depth_stencil = &ds;
     }
 
-    const auto assembled = assemble(*type, primitive_count, static_cast<uint32_t>(draw_vertices.size()));
+    const auto assembled = assemble(type, primitive_count, static_cast<uint32_t>(draw_vertices.size()));
     if (!assembled.ok()) return CallResult::fail(assembled.error);
 
     auto clock = std::chrono::steady_clock::now();
@@ -319,8 +317,8 @@ CallResult Device::run_draw(uint32_t type_value, uint32_t primitive_count, std::
     }
     uint16_t varyings = ps ? varyings_read_by(*ps) : static_cast<uint16_t>(1u << kVaryingColor0);
     if (merger.fog_enable && merger.fog_table_mode == FogMode::None) varyings |= 1u << kVaryingFog;
-    const bool points = *type == PrimitiveType::PointList ||
-                        (render_state_.fill_mode == FillMode::Point && *type >= PrimitiveType::TriangleList);
+    const bool points = type == PrimitiveType::PointList ||
+                        (render_state_.fill_mode == FillMode::Point && type >= PrimitiveType::TriangleList);
     uint32_t vs_outputs = vs_outputs_for(varyings);
     if (points) vs_outputs |= output_bit(slot::kPointSize);
     const emu::Executable* vs = lowered_for(vs_object, vs_flow_, vs_outputs, options_.precision, stats_, error);
@@ -354,7 +352,7 @@ CallResult Device::run_draw(uint32_t type_value, uint32_t primitive_count, std::
     setup_state.varying_mask = varyings;
     setup_state.shader_point_size = writes_point_size;
     const std::vector<PrimitiveSetup> setups =
-        setup_primitives(*type, render_state_.fill_mode, assembled.primitives, shaded, unique.slots, clip, setup_state);
+        setup_primitives(type, render_state_.fill_mode, assembled.primitives, shaded, unique.slots, clip, setup_state);
 
     // Pixel pipeline for this draw.
     PixelPipeline pipe;
@@ -409,6 +407,26 @@ namespace {
 
 std::string draw_error(const char* call, const CallResult& result) { return std::string(call) + ": " + result.error; }
 
+// A draw's primitive type and the number of draw vertices its PrimitiveCount reads; nullopt for
+// a type that is not a D3DPRIMITIVETYPE or a count whose vertices overflow.
+struct DrawShape {
+    PrimitiveType type;
+    uint32_t vertex_count;
+};
+std::optional<DrawShape> draw_shape(uint32_t type, uint32_t primitive_count) {
+    const auto pt = primitive_type_from(type);
+    const auto count = pt ? vertices_for(*pt, primitive_count) : std::nullopt;
+    if (!count) return std::nullopt;
+    return DrawShape{*pt, *count};
+}
+
+// The streams of a DrawPrimitiveUP / DrawIndexedPrimitiveUP: the user's vertices as stream 0.
+std::vector<VertexStream> user_pointer_streams(std::span<const std::byte> vertices, uint32_t stride) {
+    std::vector<VertexStream> streams(kMaxVertexStreams);
+    streams[0] = VertexStream{vertices, 0, stride};
+    return streams;
+}
+
 }  // namespace
 
 std::vector<VertexStream> Device::bound_streams() const {
@@ -419,39 +437,34 @@ std::vector<VertexStream> Device::bound_streams() const {
 }
 
 CallResult Device::draw_primitive(uint32_t type, uint32_t start_vertex, uint32_t primitive_count) {
-    const auto pt = primitive_type_from(type);
-    const auto count = pt ? vertices_for(*pt, primitive_count) : std::nullopt;
-    if (!count) return CallResult::fail("DrawPrimitive: bad primitive type or count");
-    auto ids = sequential_vertices(start_vertex, *count);
+    const auto shape = draw_shape(type, primitive_count);
+    if (!shape) return CallResult::fail("DrawPrimitive: bad primitive type or count");
+    auto ids = sequential_vertices(start_vertex, shape->vertex_count);
     if (!ids.ok()) return CallResult::fail("DrawPrimitive: " + ids.error);
-    auto result = run_draw(type, primitive_count, std::move(ids.vertices), bound_streams());
+    auto result = run_draw(shape->type, primitive_count, std::move(ids.vertices), bound_streams());
     return result ? result : CallResult::fail(draw_error("DrawPrimitive", result));
 }
 
 CallResult Device::draw_indexed_primitive(uint32_t type, int32_t base_vertex, uint32_t /*min_index: a hint*/,
                                           uint32_t num_vertices, uint32_t start_index, uint32_t primitive_count) {
-    const auto pt = primitive_type_from(type);
-    const auto count = pt ? vertices_for(*pt, primitive_count) : std::nullopt;
-    if (!count) return CallResult::fail("DrawIndexedPrimitive: bad primitive type or count");
+    const auto shape = draw_shape(type, primitive_count);
+    if (!shape) return CallResult::fail("DrawIndexedPrimitive: bad primitive type or count");
     if (num_vertices == 0) return CallResult::fail("DrawIndexedPrimitive: NumVertices is 0");
     if (!indices_) return CallResult::fail("DrawIndexedPrimitive: no index buffer is set");
-    auto ids = read_indices(indices_->bytes, indices_->index_format, start_index, *count, base_vertex);
+    auto ids = read_indices(indices_->bytes, indices_->index_format, start_index, shape->vertex_count, base_vertex);
     if (!ids.ok()) return CallResult::fail("DrawIndexedPrimitive: " + ids.error);
-    auto result = run_draw(type, primitive_count, std::move(ids.vertices), bound_streams());
+    auto result = run_draw(shape->type, primitive_count, std::move(ids.vertices), bound_streams());
     return result ? result : CallResult::fail(draw_error("DrawIndexedPrimitive", result));
 }
 
 CallResult Device::draw_primitive_up(uint32_t type, uint32_t primitive_count, std::span<const std::byte> vertices,
                                      uint32_t stride) {
-    const auto pt = primitive_type_from(type);
-    const auto count = pt ? vertices_for(*pt, primitive_count) : std::nullopt;
-    if (!count) return CallResult::fail("DrawPrimitiveUP: bad primitive type or count");
+    const auto shape = draw_shape(type, primitive_count);
+    if (!shape) return CallResult::fail("DrawPrimitiveUP: bad primitive type or count");
     if (stride == 0) return CallResult::fail("DrawPrimitiveUP: stride 0");
-    auto ids = sequential_vertices(0, *count);
+    auto ids = sequential_vertices(0, shape->vertex_count);
     if (!ids.ok()) return CallResult::fail("DrawPrimitiveUP: " + ids.error);
-    std::vector<VertexStream> streams(kMaxVertexStreams);
-    streams[0] = VertexStream{vertices, 0, stride};
-    auto result = run_draw(type, primitive_count, std::move(ids.vertices), streams);
+    auto result = run_draw(shape->type, primitive_count, std::move(ids.vertices), user_pointer_streams(vertices, stride));
     if (!result) return CallResult::fail(draw_error("DrawPrimitiveUP", result));
     // D3D9: after a UP draw, stream 0 is unset.
     streams_[0] = StreamBinding{};
@@ -462,19 +475,16 @@ CallResult Device::draw_indexed_primitive_up(uint32_t type, uint32_t /*min_index
                                              uint32_t primitive_count, std::span<const std::byte> indices,
                                              Format index_format, std::span<const std::byte> vertices,
                                              uint32_t stride) {
-    const auto pt = primitive_type_from(type);
-    const auto count = pt ? vertices_for(*pt, primitive_count) : std::nullopt;
-    if (!count) return CallResult::fail("DrawIndexedPrimitiveUP: bad primitive type or count");
+    const auto shape = draw_shape(type, primitive_count);
+    if (!shape) return CallResult::fail("DrawIndexedPrimitiveUP: bad primitive type or count");
     if (stride == 0) return CallResult::fail("DrawIndexedPrimitiveUP: stride 0");
     if (num_vertices == 0) return CallResult::fail("DrawIndexedPrimitiveUP: NumVertices is 0");
     if (index_format != Format::INDEX16 && index_format != Format::INDEX32)
         return CallResult::fail("DrawIndexedPrimitiveUP: the index format is not INDEX16 or INDEX32");
     auto ids = read_indices(indices, index_format == Format::INDEX16 ? IndexFormat::Index16 : IndexFormat::Index32, 0,
-                            *count, 0);
+                            shape->vertex_count, 0);
     if (!ids.ok()) return CallResult::fail("DrawIndexedPrimitiveUP: " + ids.error);
-    std::vector<VertexStream> streams(kMaxVertexStreams);
-    streams[0] = VertexStream{vertices, 0, stride};
-    auto result = run_draw(type, primitive_count, std::move(ids.vertices), streams);
+    auto result = run_draw(shape->type, primitive_count, std::move(ids.vertices), user_pointer_streams(vertices, stride));
     if (!result) return CallResult::fail(draw_error("DrawIndexedPrimitiveUP", result));
     // D3D9: after a UP draw, stream 0 and the index buffer are unset.
     streams_[0] = StreamBinding{};

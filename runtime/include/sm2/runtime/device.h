@@ -179,7 +179,7 @@ private:
     CallResult create_shader(const std::string& name, isa::Program program, isa::ShaderType type);
     CallResult add_resource(const std::string& name, std::shared_ptr<Resource> resource);
     std::shared_ptr<Resource> find(const std::string& name) const;
-    CallResult run_draw(uint32_t type, uint32_t primitive_count, std::vector<uint32_t> draw_vertices,
+    CallResult run_draw(PrimitiveType type, uint32_t primitive_count, std::vector<uint32_t> draw_vertices,
                         std::span<const VertexStream> streams);
     Surface* render_target_surface(unsigned index) const;
     std::vector<VertexStream> bound_streams() const;  // SetStreamSource bindings, as spans
