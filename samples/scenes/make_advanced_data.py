@@ -16,34 +16,19 @@ Matrices are printed as the four rows of M with clip = M * (x, y, z, 1), the reg
 `m4x4 oPos, v0, c0` reads (left-handed, y up, D3D9's z in [0, w]).
 """
 import math
-import os
 import struct
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-DATA = os.path.join(HERE, "data")
+import scene_data
+from scene_data import DATA, write, f32, u16, argb, dot
+
+
+class Lcg(scene_data.Lcg):
+    def uniform(self):
+        return self.next() / float(1 << 24)
 
 
 # ---------------------------------------------------------------- small helpers
-def write(name, data):
-    os.makedirs(DATA, exist_ok=True)
-    with open(os.path.join(DATA, name), "wb") as f:
-        f.write(data)
-    return len(data)
-
-
-def f32(*values):
-    return struct.pack("<%df" % len(values), *values)
-
-
-def u16(values):
-    return struct.pack("<%dH" % len(values), *values)
-
-
-def argb(a, r, g, b):
-    return struct.pack("<I", (a << 24) | (r << 16) | (g << 8) | b)
-
-
 def clamp8(v):
     return max(0, min(255, int(math.floor(v + 0.5))))
 
@@ -60,20 +45,6 @@ def half(v):
     return struct.unpack("<H", struct.pack("<e", v))[0]
 
 
-class Lcg:
-    """A tiny deterministic generator (the same numbers on every Python version)."""
-
-    def __init__(self, seed):
-        self.state = seed & 0xFFFFFFFF
-
-    def next(self):
-        self.state = (self.state * 1664525 + 1013904223) & 0xFFFFFFFF
-        return self.state >> 8
-
-    def uniform(self):
-        return self.next() / float(1 << 24)
-
-
 def add(a, b):
     return [x + y for x, y in zip(a, b)]
 
@@ -84,10 +55,6 @@ def sub(a, b):
 
 def scale(a, s):
     return [x * s for x in a]
-
-
-def dot(a, b):
-    return sum(x * y for x, y in zip(a, b))
 
 
 def cross(a, b):
@@ -101,11 +68,6 @@ def normalize(a):
 
 def lerp(a, b, t):
     return a + (b - a) * t
-
-
-def smoothstep(e0, e1, x):
-    t = min(1.0, max(0.0, (x - e0) / (e1 - e0)))
-    return t * t * (3 - 2 * t)
 
 
 # ---------------------------------------------------------------- matrices (column vectors)

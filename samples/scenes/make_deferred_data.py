@@ -32,51 +32,21 @@ Textures (A8R8G8B8, stored as the 32-bit value 0xAARRGGBB):
   deferred_bumps_normal_64    one round dome per texture (tiled: a grid of bumps on the spheres)
 """
 import math
-import os
-import struct
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-DATA = os.path.join(HERE, "data")
+import scene_data
+from scene_data import DATA, write, f32, u16, argb, dot, smoothstep
+
+
+class Lcg(scene_data.Lcg):
+    def uniform(self):
+        return (self.next() & 0xFFFF) / 65536.0
 
 WIDTH, HEIGHT = 320, 240          # the G-buffer and light-buffer size of every deferred scene
 
 
-def write(name, data):
-    os.makedirs(DATA, exist_ok=True)
-    with open(os.path.join(DATA, name), "wb") as f:
-        f.write(data)
-    return len(data)
-
-
-def f32(*values):
-    return struct.pack("<%df" % len(values), *values)
-
-
-def u16(values):
-    return struct.pack("<%dH" % len(values), *values)
-
-
-def argb(a, r, g, b):
-    return struct.pack("<I", (a << 24) | (r << 16) | (g << 8) | b)
-
-
 def clamp8(v):
     return max(0, min(255, int(math.floor(v + 0.5))))
-
-
-class Lcg:
-    """A tiny deterministic generator (the same numbers on every Python version)."""
-
-    def __init__(self, seed):
-        self.state = seed & 0xFFFFFFFF
-
-    def next(self):
-        self.state = (self.state * 1664525 + 1013904223) & 0xFFFFFFFF
-        return self.state >> 8
-
-    def uniform(self):
-        return (self.next() & 0xFFFF) / 65536.0
 
 
 # ---------------------------------------------------------------- small vector algebra
@@ -90,10 +60,6 @@ def sub(a, b):
 
 def scale(a, s):
     return tuple(x * s for x in a)
-
-
-def dot(a, b):
-    return sum(x * y for x, y in zip(a, b))
 
 
 def cross(a, b):
@@ -406,11 +372,6 @@ def indices_ib(tris):
 
 
 # ---------------------------------------------------------------- textures
-def smoothstep(e0, e1, x):
-    t = min(1.0, max(0.0, (x - e0) / (e1 - e0)))
-    return t * t * (3 - 2 * t)
-
-
 def tile_height(x, y, size):
     """Height of the 2 x 2 tile pattern at texel (x, y) of a size x size texture (wraps)."""
     tile = size // 2

@@ -9,48 +9,19 @@ tightly packed, A8R8G8B8 texels stored as the 32-bit value 0xAARRGGBB, i.e. byte
     python3 samples/scenes/make_textures.py          # (re)writes samples/scenes/data/*
 """
 import math
-import os
 import struct
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-DATA = os.path.join(HERE, "data")
+import scene_data
+from scene_data import DATA, write, f32, u16, argb
 
 
-def write(name, data):
-    os.makedirs(DATA, exist_ok=True)
-    with open(os.path.join(DATA, name), "wb") as f:
-        f.write(data)
-    return len(data)
-
-
-def f32(*values):
-    return struct.pack("<%df" % len(values), *values)
-
-
-def u16(values):
-    return struct.pack("<%dH" % len(values), *values)
-
-
-def argb(a, r, g, b):
-    return struct.pack("<I", (a << 24) | (r << 16) | (g << 8) | b)
+class Lcg(scene_data.Lcg):
+    def pick(self, items):
+        return items[self.next() % len(items)]
 
 
 def clamp8(v):
     return max(0, min(255, int(round(v))))
-
-
-class Lcg:
-    """A tiny deterministic generator (the same numbers on every Python version)."""
-
-    def __init__(self, seed):
-        self.state = seed & 0xFFFFFFFF
-
-    def next(self):
-        self.state = (self.state * 1664525 + 1013904223) & 0xFFFFFFFF
-        return self.state >> 8
-
-    def pick(self, items):
-        return items[self.next() % len(items)]
 
 
 def hue(h, s=0.55, v=0.85):
