@@ -67,14 +67,6 @@ std::string family_names(EnumFamily family) {
     return names;
 }
 
-// D3DCUBEMAP_FACES by name; the values are texture.h's CubeFace.
-constexpr std::array<std::pair<std::string_view, CubeFace>, 6> kCubeFaces = {{
-    {"POSITIVE_X", CubeFace::PositiveX}, {"NEGATIVE_X", CubeFace::NegativeX},
-    {"POSITIVE_Y", CubeFace::PositiveY}, {"NEGATIVE_Y", CubeFace::NegativeY},
-    {"POSITIVE_Z", CubeFace::PositiveZ}, {"NEGATIVE_Z", CubeFace::NegativeZ},
-}};
-constexpr std::string_view kCubeFacePrefix = "D3DCUBEMAP_FACE_";
-
 // The arguments of one call, converted on demand; `i` is 0-based, messages count from 1.
 class Args {
 public:
@@ -214,12 +206,9 @@ uint32_t clear_flags(const Args& args, size_t i) {
 uint32_t cube_face(const Args& args, size_t i) {
     const Value& v = args.at(i);
     if (v.kind == Kind::Integer) return args.u32(i, "face");
-    std::string_view name = args.identifier(i, "face");
-    if (name.substr(0, kCubeFacePrefix.size()) == kCubeFacePrefix) name.remove_prefix(kCubeFacePrefix.size());
-    for (const auto& [face_name, face] : kCubeFaces)
-        if (face_name == name) return static_cast<uint32_t>(face);
-    args.fail(i, "face", "unknown cube face '" + args.at(i).text +
-                             "' (expected POSITIVE_X, NEGATIVE_X, POSITIVE_Y, NEGATIVE_Y, POSITIVE_Z or NEGATIVE_Z)");
+    if (auto face = enum_value(EnumFamily::CubeFace, args.identifier(i, "face"))) return *face;
+    args.fail(i, "face", "unknown cube face '" + args.at(i).text + "' (expected one of " +
+                             family_names(EnumFamily::CubeFace) + ")");
 }
 
 VertexElement vertex_element(const Args& args, size_t i) {

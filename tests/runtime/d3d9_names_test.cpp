@@ -4,6 +4,7 @@
 #include <set>
 
 #include "sm2/runtime/d3d9_names.h"
+#include "sm2/runtime/texture.h"
 
 namespace sm2::runtime {
 namespace {
@@ -55,6 +56,9 @@ TEST(D3D9Names, EnumValues) {
     EXPECT_EQ(enum_value(EnumFamily::ClearFlags, "STENCIL"), 4u);
     EXPECT_EQ(enum_value(EnumFamily::ColorWrite, "ALPHA"), 8u);
     EXPECT_EQ(enum_value(EnumFamily::Bool, "TRUE"), 1u);
+    EXPECT_EQ(enum_value(EnumFamily::CubeFace, "POSITIVE_Y"), 2u);              // d3d9types.h
+    EXPECT_EQ(enum_value(EnumFamily::CubeFace, "D3DCUBEMAP_FACE_NEGATIVE_Z"), 5u);
+    EXPECT_EQ(enum_value(EnumFamily::CubeFace, "NEGATIVE_Z"), static_cast<uint32_t>(CubeFace::NegativeZ));
     EXPECT_EQ(enum_value(EnumFamily::RenderState, "ZFUNC"), 23u);
     EXPECT_EQ(enum_value(EnumFamily::Cull, "SIDEWAYS"), std::nullopt);
     EXPECT_EQ(enum_value(EnumFamily::Cull, "D3DCMP_LESS"), std::nullopt);  // other family's prefix

@@ -31,6 +31,7 @@ enum class EnumFamily : uint8_t {
     TextureFilter,   // D3DTEXF_*
     ClearFlags,      // D3DCLEAR_* (bits)
     ColorWrite,      // D3DCOLORWRITEENABLE_* (bits)
+    CubeFace,        // D3DCUBEMAP_FACE_* (D3DCUBEMAP_FACES; texture.h's CubeFace values)
     Bool,            // TRUE / FALSE
 };
 
