@@ -35,6 +35,7 @@ Device::Device(DeviceOptions options) : options_(std::move(options)) {
     ps_f_.assign(kMaxPixelShaderConstantsF, {0.0f, 0.0f, 0.0f, 0.0f});
     if (options_.threads == 0) options_.threads = 1;
     sampler_.set_precision(options_.filter_precision);
+    sampler_.set_block_path(!options_.reference_paths);
 }
 
 Device::~Device() = default;

@@ -9,6 +9,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include <immintrin.h>
+
 #include "dxt.h"
 #include "format_layout.h"
 
@@ -371,30 +373,49 @@ Dir cube_direction(float x, float y, float z) {
 
 // A whole lookup at normalized (u, v, w) on `face` with a computed LOD; `axis` is the
 // anisotropic major axis in normalized coordinates.
-template <Format F>
-Float4 lookup(const Context& c, float u, float v, float w, int face, const Lod& lod, const std::array<float, 3>& axis) {
-    if (lod.magnify) return filter_level<F>(c, level_view(c, c.first, face), c.mag, u, v, w);
-    const Filter f = c.anisotropic ? Filter::Linear : c.min;
-    int l0 = c.first, l1 = c.first;
+// The levels a lookup reads and the filter it reads them with (§14.5): the first level with
+// the magnification filter, else the minification filter on one level or, with a LINEAR mip
+// filter, two levels blended by `frac` (0: the second level is not read).
+struct LevelChoice {
+    Filter filter = Filter::Point;
+    int l0 = 0, l1 = 0;
     float frac = 0;
+};
+
+LevelChoice choose_levels(const Context& c, const Lod& lod) {
+    if (lod.magnify) return {c.mag, c.first, c.first, 0.0f};
+    LevelChoice choice{c.anisotropic ? Filter::Linear : c.min, c.first, c.first, 0.0f};
     if (c.mip != Mip::None) {
         const float d = std::clamp(lod.lambda, static_cast<float>(c.first), static_cast<float>(c.last));
         if (c.mip == Mip::Point) {
-            l0 = l1 = std::min(c.last, static_cast<int>(std::floor(d + 0.5f)));
+            choice.l0 = choice.l1 = std::min(c.last, static_cast<int>(std::floor(d + 0.5f)));
         } else {
-            l0 = static_cast<int>(std::floor(d));
-            l1 = std::min(l0 + 1, c.last);
-            frac = d - static_cast<float>(l0);
-            if (c.fixed) frac = std::floor(frac * kFixedScale) / kFixedScale;
+            choice.l0 = static_cast<int>(std::floor(d));
+            choice.l1 = std::min(choice.l0 + 1, c.last);
+            choice.frac = d - static_cast<float>(choice.l0);
+            if (c.fixed) choice.frac = std::floor(choice.frac * kFixedScale) / kFixedScale;
         }
     }
-    const Level a = level_view(c, l0, face);
+    return choice;
+}
+
+// Blends the two levels of a LINEAR mip filter.
+Float4 blend_levels(const Float4& a, const Float4& b, float frac) {
+    Float4 r;
+    for (unsigned k = 0; k < 4; ++k) r[k] = (1 - frac) * a[k] + frac * b[k];
+    return r;
+}
+
+template <Format F>
+Float4 lookup(const Context& c, float u, float v, float w, int face, const Lod& lod, const std::array<float, 3>& axis) {
+    const LevelChoice choice = choose_levels(c, lod);
+    if (lod.magnify) return filter_level<F>(c, level_view(c, choice.l0, face), choice.filter, u, v, w);
+    const Filter f = choice.filter;
+    const float frac = choice.frac;
+    const Level a = level_view(c, choice.l0, face);
     auto probe = [&](float pu, float pv, float pw) {
         Float4 r = filter_level<F>(c, a, f, pu, pv, pw);
-        if (frac > 0) {
-            const Float4 b = filter_level<F>(c, level_view(c, l1, face), f, pu, pv, pw);
-            for (unsigned k = 0; k < 4; ++k) r[k] = (1 - frac) * r[k] + frac * b[k];
-        }
+        if (frac > 0) r = blend_levels(r, filter_level<F>(c, level_view(c, choice.l1, face), f, pu, pv, pw), frac);
         return r;
     };
     if (lod.probes <= 1) return probe(u, v, w);
@@ -434,6 +455,178 @@ Float4 lookup_any(const Context& c, float u, float v, float w, int face, const L
     default: return lookup<Format::Unknown>(c, u, v, w, face, lod, axis);
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// 16 lanes at once: 2D lookups on a texture with 8-bit RGBA texels (A8R8G8B8, X8R8G8B8,
+// A8B8G8R8), POINT or LINEAR filtering, WRAP (power-of-two levels) or CLAMP addressing, no
+// sRGB, no anisotropy: what most draws sample. It is filter_level() and the level blend of
+// lookup() evaluated in AVX-512 registers with the same operations in the same order (IEEE
+// results are the same whatever the vector width), so its texels are bit for bit those of the
+// per-lane path; tests/runtime/sampler_block_test.cpp holds the two equal. The level of detail
+// and the choice of levels stay per quad and per lane (compute_lod, choose_levels).
+
+// One lane's lookup as choose_levels() left it.
+struct BlockLanes {
+    alignas(64) std::array<float, emu::kBatchLanes> u{}, v{}, frac{};
+    alignas(64) std::array<int32_t, emu::kBatchLanes> l0{}, l1{}, linear{};
+};
+
+// The levels of the texture as tables the lanes index by level number.
+struct BlockLevels {
+    static constexpr unsigned kMax = 16;
+    alignas(64) std::array<int32_t, kMax> width{}, height{}, row{};
+    alignas(64) std::array<const std::byte*, kMax> base{};
+};
+
+// Channel positions of the 32-bit texel (r, g, b, a); -1: the channel reads 1.
+struct Rgba8Order {
+    std::array<int, 4> shift;
+};
+
+std::optional<Rgba8Order> rgba8_order(Format f) {
+    switch (f) {
+    case Format::A8R8G8B8: return Rgba8Order{{16, 8, 0, 24}};
+    case Format::X8R8G8B8: return Rgba8Order{{16, 8, 0, -1}};
+    case Format::A8B8G8R8: return Rgba8Order{{0, 8, 16, 24}};
+    default: return std::nullopt;
+    }
+}
+
+bool block_address_supported(TextureAddress mode, bool all_pow2) {
+    return mode == TextureAddress::Clamp || (mode == TextureAddress::Wrap && all_pow2);
+}
+
+// Whether the 16-lane path covers this context; fills the level tables.
+bool block_supported(const Context& c, BlockLevels& levels) {
+    if (c.cube || c.volume || c.dxt || c.srgb || c.anisotropic || !rgba8_order(c.format)) return false;
+    if (c.texture->levels() > BlockLevels::kMax || c.bpp != 4) return false;
+    if (!__builtin_cpu_supports("avx512f") || !__builtin_cpu_supports("avx512dq")) return false;
+    bool all_pow2 = true;
+    for (unsigned l = 0; l < BlockLevels::kMax; ++l) {
+        const Surface& s = c.texture->surface(std::min(l, c.texture->levels() - 1));
+        if (s.width() > (1u << 24) || s.height() > (1u << 24) || s.row_pitch() * s.height() > (size_t{1} << 31))
+            return false;
+        levels.width[l] = static_cast<int32_t>(s.width());
+        levels.height[l] = static_cast<int32_t>(s.height());
+        levels.row[l] = static_cast<int32_t>(s.row_pitch());
+        levels.base[l] = s.bytes().data();
+        all_pow2 = all_pow2 && std::has_single_bit(s.width()) && std::has_single_bit(s.height());
+    }
+    return block_address_supported(c.address[0], all_pow2) && block_address_supported(c.address[1], all_pow2);
+}
+
+#define SM2_AVX512 __attribute__((target("avx512f,avx512dq")))
+// GCC 12's AVX-512 headers trip -Wuninitialized on their own _mm512_undefined_*() self-init.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+
+// linear_taps() and the POINT index of filter_level() for 16 lanes: i0, i1 addressed, a the
+// weight of i1 (0 for POINT lanes, whose i1 is never weighted).
+struct BlockTaps {
+    __m512i i0, i1;
+    __m512 a;
+};
+
+SM2_AVX512 inline __m512i block_address(TextureAddress mode, __m512i i, __m512i n) {
+    const __m512i last = _mm512_sub_epi32(n, _mm512_set1_epi32(1));
+    if (mode == TextureAddress::Clamp) return _mm512_max_epi32(_mm512_min_epi32(i, last), _mm512_setzero_si512());
+    return _mm512_and_si512(i, last);  // WRAP on a power of two
+}
+
+SM2_AVX512 inline BlockTaps block_taps(const Context& c, __m512 coord, __m512i n, TextureAddress mode, __mmask16 linear) {
+    // texel_space(): NaN -> 0, times the level size, clamped to +-2^30.
+    const __m512 finite = _mm512_maskz_mov_ps(_mm512_cmp_ps_mask(coord, coord, _CMP_ORD_Q), coord);
+    const __m512 t = _mm512_max_ps(_mm512_min_ps(_mm512_mul_ps(finite, _mm512_cvtepi32_ps(n)), _mm512_set1_ps(kCoordLimit)),
+                                   _mm512_set1_ps(-kCoordLimit));
+    const __m512 x = _mm512_sub_ps(t, _mm512_set1_ps(0.5f));
+    __m512 index, a;
+    if (c.fixed) {
+        // floor(x * 256) split into its integer part >> 8 and its low 8 bits / 256; every step is
+        // exact in float (|x * 256| < 2^39, a multiple of 2^(e-23) that fits the mantissa).
+        const __m512 fx = _mm512_roundscale_ps(_mm512_mul_ps(x, _mm512_set1_ps(kFixedScale)), _MM_FROUND_TO_NEG_INF);
+        index = _mm512_roundscale_ps(_mm512_mul_ps(fx, _mm512_set1_ps(1.0f / kFixedScale)), _MM_FROUND_TO_NEG_INF);
+        a = _mm512_mul_ps(_mm512_sub_ps(fx, _mm512_mul_ps(index, _mm512_set1_ps(kFixedScale))),
+                          _mm512_set1_ps(1.0f / kFixedScale));
+    } else {
+        index = _mm512_roundscale_ps(x, _MM_FROUND_TO_NEG_INF);
+        a = _mm512_sub_ps(x, index);
+    }
+    // POINT lanes: floor of the unshifted coordinate, weight 0.
+    index = _mm512_mask_mov_ps(_mm512_roundscale_ps(t, _MM_FROUND_TO_NEG_INF), linear, index);
+    a = _mm512_maskz_mov_ps(linear, a);
+    const __m512i i = _mm512_cvttps_epi32(index);
+    return {block_address(mode, i, n), block_address(mode, _mm512_add_epi32(i, _mm512_set1_epi32(1)), n), a};
+}
+
+// The texels at (x, y) of each lane's level, as 32-bit words.
+SM2_AVX512 inline __m512i block_gather(__m512i x, __m512i y, __m512i row, __m512i base_lo, __m512i base_hi) {
+    const __m512i offset = _mm512_add_epi32(_mm512_mullo_epi32(y, row), _mm512_slli_epi32(x, 2));
+    const __m512i lo = _mm512_add_epi64(base_lo, _mm512_cvtepi32_epi64(_mm512_castsi512_si256(offset)));
+    const __m512i hi = _mm512_add_epi64(base_hi, _mm512_cvtepi32_epi64(_mm512_extracti64x4_epi64(offset, 1)));
+    const __m256i texels_lo = _mm512_i64gather_epi32(lo, nullptr, 1);
+    const __m256i texels_hi = _mm512_i64gather_epi32(hi, nullptr, 1);
+    return _mm512_inserti64x4(_mm512_castsi256_si512(texels_lo), texels_hi, 1);
+}
+
+// The UNORM8 decode of format_layout.h: byte / 255 (a missing alpha reads 1).
+SM2_AVX512 inline __m512 block_channel(__m512i texels, int shift) {
+    if (shift < 0) return _mm512_set1_ps(1.0f);
+    const __m512i byte = _mm512_and_si512(_mm512_srli_epi32(texels, static_cast<unsigned>(shift)), _mm512_set1_epi32(0xFF));
+    return _mm512_div_ps(_mm512_cvtepi32_ps(byte), _mm512_set1_ps(255.0f));
+}
+
+// filter_level() on each lane's level `level` (POINT or LINEAR per lane).
+SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, const Rgba8Order& order, __m512i level,
+                                   const BlockLanes& in, __mmask16 linear, __m512 (&out)[4]) {
+    const __m512i w = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.width.data()));
+    const __m512i h = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.height.data()));
+    const __m512i row = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.row.data()));
+    const __m512i bases_lo = _mm512_load_si512(levels.base.data());
+    const __m512i bases_hi = _mm512_load_si512(levels.base.data() + 8);
+    const __m512i base_lo =
+        _mm512_permutex2var_epi64(bases_lo, _mm512_cvtepi32_epi64(_mm512_castsi512_si256(level)), bases_hi);
+    const __m512i base_hi =
+        _mm512_permutex2var_epi64(bases_lo, _mm512_cvtepi32_epi64(_mm512_extracti64x4_epi64(level, 1)), bases_hi);
+    const BlockTaps tx = block_taps(c, _mm512_load_ps(in.u.data()), w, c.address[0], linear);
+    const BlockTaps ty = block_taps(c, _mm512_load_ps(in.v.data()), h, c.address[1], linear);
+    const __m512i t00 = block_gather(tx.i0, ty.i0, row, base_lo, base_hi);
+    const __m512i t10 = block_gather(tx.i1, ty.i0, row, base_lo, base_hi);
+    const __m512i t01 = block_gather(tx.i0, ty.i1, row, base_lo, base_hi);
+    const __m512i t11 = block_gather(tx.i1, ty.i1, row, base_lo, base_hi);
+    const __m512 one = _mm512_set1_ps(1.0f);
+    const __m512 bx = _mm512_sub_ps(one, tx.a), by = _mm512_sub_ps(one, ty.a);
+    const __m512 w00 = _mm512_mul_ps(bx, by), w10 = _mm512_mul_ps(tx.a, by);
+    const __m512 w01 = _mm512_mul_ps(bx, ty.a), w11 = _mm512_mul_ps(tx.a, ty.a);
+    for (unsigned k = 0; k < 4; ++k) {
+        const int shift = order.shift[k];
+        __m512 r = _mm512_add_ps(_mm512_mul_ps(block_channel(t00, shift), w00), _mm512_mul_ps(block_channel(t10, shift), w10));
+        r = _mm512_add_ps(r, _mm512_mul_ps(block_channel(t01, shift), w01));
+        out[k] = _mm512_add_ps(r, _mm512_mul_ps(block_channel(t11, shift), w11));
+    }
+}
+
+// The lookups of `in` (every lane valid: lanes without a pixel read level c.first at 0, 0).
+SM2_AVX512 void block_lookup(const Context& c, const BlockLevels& levels, const BlockLanes& in,
+                             std::array<emu::FloatLanes, 4>& texels) {
+    const Rgba8Order order = *rgba8_order(c.format);
+    const __mmask16 linear = _mm512_cmpneq_epi32_mask(_mm512_load_si512(in.linear.data()), _mm512_setzero_si512());
+    __m512 r[4];
+    block_filter_level(c, levels, order, _mm512_load_si512(in.l0.data()), in, linear, r);
+    const __m512 frac = _mm512_load_ps(in.frac.data());
+    const __mmask16 second = _mm512_cmp_ps_mask(frac, _mm512_setzero_ps(), _CMP_GT_OQ);
+    if (second) {
+        __m512 b[4];
+        block_filter_level(c, levels, order, _mm512_load_si512(in.l1.data()), in, linear, b);
+        const __m512 keep = _mm512_sub_ps(_mm512_set1_ps(1.0f), frac);
+        for (unsigned k = 0; k < 4; ++k)
+            r[k] = _mm512_mask_mov_ps(r[k], second, _mm512_add_ps(_mm512_mul_ps(keep, r[k]), _mm512_mul_ps(frac, b[k])));
+    }
+    for (unsigned k = 0; k < 4; ++k) _mm512_storeu_ps(texels[k].data(), r[k]);
+}
+
+#pragma GCC diagnostic pop
+#undef SM2_AVX512
 
 }  // namespace
 
@@ -481,6 +674,13 @@ Float4 TextureSampler::sample_gradient(unsigned stage, const std::array<float, 3
     return lookup_any(c, p[0], p[1], p[2], face, lod, lod.major_axis == 0 ? px : py);
 }
 
+bool TextureSampler::block_path_applies(unsigned stage) const {
+    const Stage& s = stages_.at(stage);
+    if (!block_enabled_ || s.texture == nullptr || s.texture->levels() == 0) return false;
+    BlockLevels levels;
+    return block_supported(make_context(*s.texture, s.state, precision_), levels);
+}
+
 void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::FloatLanes, 4>& texels) {
     const unsigned quads = std::min(request.quad_count, emu::kBatchQuads);
     for (unsigned k = 0; k < 4; ++k) texels[k].fill(k == 3 ? 1.0f : 0.0f);
@@ -489,6 +689,13 @@ void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::
     if (s.texture == nullptr || s.texture->levels() == 0) return;  // unbound or empty: (0, 0, 0, 1)
     const Context c = make_context(*s.texture, s.state, precision_);
     const auto& in = *request.coordinates;
+    BlockLevels levels;
+    const bool block = block_enabled_ && block_supported(c, levels);
+    BlockLanes lanes;
+    if (block) {
+        lanes.l0.fill(c.first);
+        lanes.l1.fill(c.first);
+    }
 
     for (unsigned q = 0; q < quads; ++q) {
         std::array<std::array<float, 3>, 4> p;  // normalized (u, v, w) per lane
@@ -534,9 +741,25 @@ void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::
         const Lod quad_lod = lod_matters ? compute_lod(c, lx, ly, 0.0f) : Lod{};
         for (unsigned i = 0; i < 4; ++i) {
             const Lod lod = bias[i] == 0.0f || !lod_matters ? quad_lod : compute_lod(c, lx, ly, bias[i]);
+            if (block) {
+                const unsigned l = 4 * q + i;
+                const LevelChoice choice = choose_levels(c, lod);
+                lanes.u[l] = p[i][0];
+                lanes.v[l] = p[i][1];
+                lanes.l0[l] = choice.l0;
+                lanes.l1[l] = choice.l1;
+                lanes.frac[l] = choice.frac;
+                lanes.linear[l] = choice.filter == Filter::Linear ? 1 : 0;
+                continue;
+            }
             const Float4 r = lookup_any(c, p[i][0], p[i][1], p[i][2], face[i], lod, lod.major_axis == 0 ? dx : dy);
             for (unsigned k = 0; k < 4; ++k) texels[k][4 * q + i] = r[k];
         }
+    }
+    if (block) {
+        std::array<emu::FloatLanes, 4> r;
+        block_lookup(c, levels, lanes, r);
+        for (unsigned k = 0; k < 4; ++k) std::copy_n(r[k].begin(), 4 * quads, texels[k].begin());
     }
 }
 

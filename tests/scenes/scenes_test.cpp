@@ -1,6 +1,6 @@
 // The sample scenes (samples/scenes/*.sm2cs, the demos of ../shared/scenes.md) replayed through
 // the library, the way D3D9 conformance tests check a rendering: every scene replays without a
-// refused call, gives the same bytes with 1 and 3 threads, and the probe pixels of
+// refused call, gives the same bytes with 1 and 3 threads and on the reference and block paths, and the probe pixels of
 // samples/scenes/probes.txt (expected colours derived by hand from each scene's geometry and
 // D3D9's rules; the reason is written beside each probe) hold their colour. Golden images
 // (tests/scenes/golden/<scene>/<image>.png) were saved only after the probes passed and the
@@ -49,7 +49,7 @@ unsigned max_slots_for(const std::string& file) {
     return value;
 }
 
-Replayed replay_scene(const std::string& file, unsigned threads) {
+Replayed replay_scene(const std::string& file, unsigned threads, bool reference_paths = false) {
     Replayed out;
     std::ifstream in(kScenes / file, std::ios::binary);
     std::stringstream text;
@@ -62,6 +62,7 @@ Replayed replay_scene(const std::string& file, unsigned threads) {
     if (!parsed.ok()) return out;
     DeviceOptions options;
     options.threads = threads;
+    options.reference_paths = reference_paths;
     options.max_instruction_slots = max_slots_for(file);
     options.output_dir = "frames";  // any name: write_image keeps the surfaces instead
     options.write_image = [&out](const Surface& surface, const std::string& path) {
@@ -86,8 +87,10 @@ std::vector<std::string> scene_files() {
 
 class Scene : public ::testing::TestWithParam<std::string> {};
 
-TEST_P(Scene, ReplaysCleanlyAndIdenticallyOnAnyThreadCount) {
-    const Replayed one = replay_scene(GetParam(), 1);
+// One thread on the reference (per-lane) paths against three threads on the block paths: the
+// bytes must not depend on the thread count nor on the path.
+TEST_P(Scene, ReplaysCleanlyAndIdenticallyOnAnyThreadCountAndPath) {
+    const Replayed one = replay_scene(GetParam(), 1, true);
     for (const auto& d : one.result.diagnostics) ADD_FAILURE() << d.to_string();
     ASSERT_FALSE(one.result.frames.empty()) << "the scene presents no frame";
     EXPECT_GT(one.result.statistics.pixels_shaded, 0u);
@@ -96,7 +99,7 @@ TEST_P(Scene, ReplaysCleanlyAndIdenticallyOnAnyThreadCount) {
     for (const auto& [name, surface] : one.images) {
         const auto it = three.images.find(name);
         ASSERT_NE(it, three.images.end()) << name;
-        EXPECT_TRUE(surface.bytes() == it->second.bytes()) << name << " differs between 1 and 3 threads";
+        EXPECT_TRUE(surface.bytes() == it->second.bytes()) << name << " differs between 1 thread (reference paths) and 3 threads (block paths)";
     }
 }
 

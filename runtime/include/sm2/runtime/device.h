@@ -65,6 +65,9 @@ struct DeviceOptions {
     // Instruction-slot limit CreateVertexShader/CreatePixelShader validate against (0: the
     // profile's, 256 vs / 96 ps); a larger value is a ps_2_x-size device for long shaders.
     unsigned max_instruction_slots = 0;
+    // Only the reference paths: every texel is sampled and every pixel merged one lane at a
+    // time, never by the 16-lane block paths. The bytes are the same; tests compare the two.
+    bool reference_paths = false;
 };
 
 struct DrawStatistics {

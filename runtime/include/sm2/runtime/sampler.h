@@ -70,6 +70,11 @@ public:
     [[nodiscard]] SamplerState& state(unsigned stage) { return stages_.at(stage).state; }
 
     void set_precision(FilterPrecision precision) { precision_ = precision; }
+    // The 16-lane AVX-512 path for the common 2D 8-bit RGBA lookups (on by default where the
+    // CPU has AVX-512); off, every lookup takes the per-lane path. Both give the same bits.
+    void set_block_path(bool enabled) { block_enabled_ = enabled; }
+    // Whether sample() takes the 16-lane path for this stage's texture and state.
+    [[nodiscard]] bool block_path_applies(unsigned stage) const;
     [[nodiscard]] FilterPrecision precision() const { return precision_; }
 
     // emu::Sampler: one float4 per lane; LOD per 2x2 quad (see docs/texturing.md).
@@ -98,6 +103,7 @@ private:
     };
     std::array<Stage, kStages> stages_{};
     FilterPrecision precision_ = FilterPrecision::Fixed8;
+    bool block_enabled_ = true;
 };
 
 }  // namespace sm2::runtime
