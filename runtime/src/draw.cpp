@@ -391,6 +391,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
         snapshots.push_back(bound->texture);
         sampler.set_texture(stage, &snapshots.back());
     }
+    sampler.prepare();
     stats_.pixels_shaded += run_tiles(pipe, setups, bins, sampler, options_.threads);
 
     stats_.pixel_seconds += lap(clock);

@@ -57,8 +57,21 @@ std::optional<uint32_t> SamplerState::get(uint32_t type) const {
     return std::nullopt;
 }
 
-void TextureSampler::set_texture(unsigned stage, const Texture* texture) { stages_.at(stage).texture = texture; }
-void TextureSampler::set_state(unsigned stage, const SamplerState& state) { stages_.at(stage).state = state; }
+void TextureSampler::set_texture(unsigned stage, const Texture* texture) {
+    stages_.at(stage).texture = texture;
+    prepared_[stage] = false;
+}
+void TextureSampler::set_state(unsigned stage, const SamplerState& state) {
+    stages_.at(stage).state = state;
+    prepared_[stage] = false;
+}
+
+// The levels of a texture as tables the block path's lanes index by level number.
+struct TextureSampler::BlockLevels {
+    static constexpr unsigned kMax = 16;
+    alignas(64) std::array<int32_t, kMax> width{}, height{}, row{};
+    alignas(64) std::array<const std::byte*, kMax> base{};
+};
 
 namespace {
 
@@ -471,12 +484,7 @@ struct BlockLanes {
     alignas(64) std::array<int32_t, emu::kBatchLanes> l0{}, l1{}, linear{};
 };
 
-// The levels of the texture as tables the lanes index by level number.
-struct BlockLevels {
-    static constexpr unsigned kMax = 16;
-    alignas(64) std::array<int32_t, kMax> width{}, height{}, row{};
-    alignas(64) std::array<const std::byte*, kMax> base{};
-};
+using BlockLevels = TextureSampler::BlockLevels;
 
 // Channel positions of the 32-bit texel (r, g, b, a); -1: the channel reads 1.
 struct Rgba8Order {
@@ -500,10 +508,12 @@ bool block_address_supported(TextureAddress mode, bool all_pow2) {
 bool block_supported(const Context& c, BlockLevels& levels) {
     if (c.cube || c.volume || c.dxt || c.srgb || c.anisotropic || !rgba8_order(c.format)) return false;
     if (c.texture->levels() > BlockLevels::kMax || c.bpp != 4) return false;
-    if (!__builtin_cpu_supports("avx512f") || !__builtin_cpu_supports("avx512dq")) return false;
+    static const bool cpu_has_avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+    if (!cpu_has_avx512) return false;
     bool all_pow2 = true;
-    for (unsigned l = 0; l < BlockLevels::kMax; ++l) {
-        const Surface& s = c.texture->surface(std::min(l, c.texture->levels() - 1));
+    const unsigned count = c.texture->levels();
+    for (unsigned l = 0; l < count; ++l) {
+        const Surface& s = c.texture->surface(l);
         if (s.width() > (1u << 24) || s.height() > (1u << 24) || s.row_pitch() * s.height() > (size_t{1} << 31))
             return false;
         levels.width[l] = static_cast<int32_t>(s.width());
@@ -512,14 +522,22 @@ bool block_supported(const Context& c, BlockLevels& levels) {
         levels.base[l] = s.bytes().data();
         all_pow2 = all_pow2 && std::has_single_bit(s.width()) && std::has_single_bit(s.height());
     }
+    for (unsigned l = count; l < BlockLevels::kMax; ++l) {  // never indexed; kept valid anyway
+        levels.width[l] = levels.width[count - 1];
+        levels.height[l] = levels.height[count - 1];
+        levels.row[l] = levels.row[count - 1];
+        levels.base[l] = levels.base[count - 1];
+    }
     return block_address_supported(c.address[0], all_pow2) && block_address_supported(c.address[1], all_pow2);
 }
 
 #define SM2_AVX512 __attribute__((target("avx512f,avx512dq")))
 // GCC 12's AVX-512 headers trip -Wuninitialized on their own _mm512_undefined_*() self-init.
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wuninitialized"
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 
 // linear_taps() and the POINT index of filter_level() for 16 lanes: i0, i1 addressed, a the
 // weight of i1 (0 for POINT lanes, whose i1 is never weighted).
@@ -625,7 +643,9 @@ SM2_AVX512 void block_lookup(const Context& c, const BlockLevels& levels, const 
     for (unsigned k = 0; k < 4; ++k) _mm512_storeu_ps(texels[k].data(), r[k]);
 }
 
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
+#endif
 #undef SM2_AVX512
 
 }  // namespace
@@ -674,6 +694,17 @@ Float4 TextureSampler::sample_gradient(unsigned stage, const std::array<float, 3
     return lookup_any(c, p[0], p[1], p[2], face, lod, lod.major_axis == 0 ? px : py);
 }
 
+void TextureSampler::prepare() {
+    for (unsigned stage = 0; stage < kStages; ++stage) {
+        const Stage& s = stages_[stage];
+        block_levels_[stage] = nullptr;
+        prepared_[stage] = true;
+        if (!block_enabled_ || s.texture == nullptr || s.texture->levels() == 0) continue;
+        auto levels = std::make_shared<BlockLevels>();
+        if (block_supported(make_context(*s.texture, s.state, precision_), *levels)) block_levels_[stage] = std::move(levels);
+    }
+}
+
 bool TextureSampler::block_path_applies(unsigned stage) const {
     const Stage& s = stages_.at(stage);
     if (!block_enabled_ || s.texture == nullptr || s.texture->levels() == 0) return false;
@@ -689,8 +720,11 @@ void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::
     if (s.texture == nullptr || s.texture->levels() == 0) return;  // unbound or empty: (0, 0, 0, 1)
     const Context c = make_context(*s.texture, s.state, precision_);
     const auto& in = *request.coordinates;
-    BlockLevels levels;
-    const bool block = block_enabled_ && block_supported(c, levels);
+    BlockLevels local_levels;
+    const BlockLevels* levels_ptr = nullptr;
+    if (prepared_[request.sampler]) levels_ptr = block_levels_[request.sampler].get();
+    else if (block_enabled_ && block_supported(c, local_levels)) levels_ptr = &local_levels;
+    const bool block = levels_ptr != nullptr;
     BlockLanes lanes;
     if (block) {
         lanes.l0.fill(c.first);
@@ -739,11 +773,14 @@ void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::
         // The LOD changes nothing when both filters agree and there are no mips to choose.
         const bool lod_matters = c.mip != Mip::None || c.mag != c.min || c.anisotropic;
         const Lod quad_lod = lod_matters ? compute_lod(c, lx, ly, 0.0f) : Lod{};
+        std::optional<LevelChoice> quad_choice;  // choose_levels(quad_lod), once per quad
         for (unsigned i = 0; i < 4; ++i) {
-            const Lod lod = bias[i] == 0.0f || !lod_matters ? quad_lod : compute_lod(c, lx, ly, bias[i]);
+            const bool own_lod = bias[i] != 0.0f && lod_matters;
+            const Lod lod = own_lod ? compute_lod(c, lx, ly, bias[i]) : quad_lod;
             if (block) {
                 const unsigned l = 4 * q + i;
-                const LevelChoice choice = choose_levels(c, lod);
+                if (!own_lod && !quad_choice) quad_choice = choose_levels(c, quad_lod);
+                const LevelChoice choice = own_lod ? choose_levels(c, lod) : *quad_choice;
                 lanes.u[l] = p[i][0];
                 lanes.v[l] = p[i][1];
                 lanes.l0[l] = choice.l0;
@@ -758,7 +795,7 @@ void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::
     }
     if (block) {
         std::array<emu::FloatLanes, 4> r;
-        block_lookup(c, levels, lanes, r);
+        block_lookup(c, *levels_ptr, lanes, r);
         for (unsigned k = 0; k < 4; ++k) std::copy_n(r[k].begin(), 4 * quads, texels[k].begin());
     }
 }

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 
 #include "sm2/emu/sampler.h"
@@ -67,14 +68,31 @@ public:
     void set_state(unsigned stage, const SamplerState& state);
     [[nodiscard]] const Texture* texture(unsigned stage) const { return stages_.at(stage).texture; }
     [[nodiscard]] const SamplerState& state(unsigned stage) const { return stages_.at(stage).state; }
-    [[nodiscard]] SamplerState& state(unsigned stage) { return stages_.at(stage).state; }
+    // A state changed through this reference is seen by the next prepare().
+    [[nodiscard]] SamplerState& state(unsigned stage) {
+        prepared_.at(stage) = false;
+        return stages_.at(stage).state;
+    }
 
-    void set_precision(FilterPrecision precision) { precision_ = precision; }
+    void set_precision(FilterPrecision precision) {
+        precision_ = precision;
+        forget_prepared();
+    }
     // The 16-lane AVX-512 path for the common 2D 8-bit RGBA lookups (on by default where the
     // CPU has AVX-512); off, every lookup takes the per-lane path. Both give the same bits.
-    void set_block_path(bool enabled) { block_enabled_ = enabled; }
+    void set_block_path(bool enabled) {
+        block_enabled_ = enabled;
+        forget_prepared();
+    }
     // Whether sample() takes the 16-lane path for this stage's texture and state.
     [[nodiscard]] bool block_path_applies(unsigned stage) const;
+    // Decides the block path and builds its level tables for every stage now, once, instead of
+    // in every sample() call (a draw calls it on its own copy after binding everything). Any
+    // later set_* call forgets what was prepared for the stages it touches.
+    void prepare();
+
+    struct BlockLevels;  // the block path's per-texture tables (sampler.cpp)
+
     [[nodiscard]] FilterPrecision precision() const { return precision_; }
 
     // emu::Sampler: one float4 per lane; LOD per 2x2 quad (see docs/texturing.md).
@@ -104,6 +122,10 @@ private:
     std::array<Stage, kStages> stages_{};
     FilterPrecision precision_ = FilterPrecision::Fixed8;
     bool block_enabled_ = true;
+    // prepare()'s result per stage: whether it ran, and the tables (null: no block path).
+    std::array<bool, kStages> prepared_{};
+    std::array<std::shared_ptr<const BlockLevels>, kStages> block_levels_{};
+    void forget_prepared() { prepared_.fill(false); }
 };
 
 }  // namespace sm2::runtime
