@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "device_internal.h"
+#include "worker_pool.h"
 #include "sm2/isa/validator.h"
 #include "sm2/runtime/image_io.h"
 #include "sm2/runtime/texture_io.h"

@@ -12,11 +12,11 @@
 #include <bit>
 #include <chrono>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
 #include "device_internal.h"
+#include "worker_pool.h"
 #include "sm2/runtime/interpolation.h"
 #include "sm2/runtime/output_merger.h"
 #include "sm2/runtime/rasterizer.h"
@@ -237,28 +237,21 @@ TileBins bin_by_tile(std::span<const PrimitiveSetup> setups, uint32_t width, uin
 // Tiles are independent (disjoint pixels and bytes): workers take whole tiles from a shared
 // counter, and any number of threads gives the same bytes. Returns the pixels shaded.
 uint64_t run_tiles(const PixelPipeline& pipe, std::span<const PrimitiveSetup> setups, const TileBins& bins,
-                   const TextureSampler& sampler, unsigned threads) {
+                   const TextureSampler& sampler, WorkerPool& pool) {
     const unsigned thread_count =
-        static_cast<unsigned>(std::clamp<size_t>(threads, 1, std::max<size_t>(bins.busy.size(), 1)));
+        static_cast<unsigned>(std::clamp<size_t>(pool.size(), 1, std::max<size_t>(bins.busy.size(), 1)));
     std::vector<TileWorker> workers(thread_count);
     for (auto& w : workers) w.sampler = sampler;
     std::atomic<size_t> next{0};
-    auto work = [&](TileWorker& w) {
+    pool.run(thread_count, [&](unsigned index) {
+        TileWorker& w = workers[index];
         for (size_t k = next.fetch_add(1); k < bins.busy.size(); k = next.fetch_add(1)) {
             const size_t t = bins.busy[k];
             const auto tx = static_cast<int32_t>(t % static_cast<size_t>(bins.tiles_x));
             const auto ty = static_cast<int32_t>(t / static_cast<size_t>(bins.tiles_x));
             process_tile(pipe, setups, bins.primitives[t], tile_rect(tx, ty), w);
         }
-    };
-    if (thread_count == 1) {
-        work(workers[0]);
-    } else {
-        std::vector<std::jthread> pool;
-        pool.reserve(thread_count - 1);
-        for (unsigned i = 1; i < thread_count; ++i) pool.emplace_back(work, std::ref(workers[i]));
-        work(workers[0]);
-    }  // the jthreads join here
+    });
     uint64_t pixels = 0;
     for (const auto& w : workers) pixels += w.pixels_shaded;
     return pixels;
@@ -392,7 +385,8 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
         sampler.set_texture(stage, &snapshots.back());
     }
     sampler.prepare();
-    stats_.pixels_shaded += run_tiles(pipe, setups, bins, sampler, options_.threads);
+    if (!pool_) pool_ = std::make_unique<WorkerPool>(options_.threads);
+    stats_.pixels_shaded += run_tiles(pipe, setups, bins, sampler, *pool_);
 
     stats_.pixel_seconds += lap(clock);
     ++stats_.draws;

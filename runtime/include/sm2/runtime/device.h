@@ -33,6 +33,8 @@
 
 namespace sm2::runtime {
 
+class WorkerPool;
+
 struct CallResult {
     bool ok = true;
     std::string error;  // why D3D9 would answer D3DERR_INVALIDCALL
@@ -210,6 +212,7 @@ private:
     uint32_t frame_ = 0;
     DrawStatistics stats_{};
     TextureSampler sampler_;
+    std::unique_ptr<WorkerPool> pool_;  // the tile threads, started by the first draw
 };
 
 }  // namespace sm2::runtime
