@@ -364,6 +364,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
         for (unsigned i = 0; i < kMaxRenderTargets; ++i)
             if (written[slot::kRenderTargetFirst + i]) pipe.merge_template.color_outputs |= static_cast<uint8_t>(1u << i);
     pipe.merge_template.shader_depth = ps && written[slot::kDepth] != 0;
+    pipe.merge_template.generic_path = options_.reference_paths;
     const bool kills = ps_object && ps_object->texkill;
     pipe.early_depth_stencil = merger.depth_stencil.active() && !pipe.merge_template.shader_depth && !kills &&
                                !merger.alpha_test;

@@ -3,50 +3,227 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "format_layout.h"
 
 namespace sm2::runtime {
 namespace {
 
-float saturate(float v) { return v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f; }  // NaN -> 0
+constexpr unsigned kLanes = emu::kBatchLanes;
+constexpr auto kLaneBit = [] {  // bit l of a LaneMask (a table: loops over lanes vectorize)
+    std::array<emu::LaneMask, kLanes> bit{};
+    for (unsigned l = 0; l < kLanes; ++l) bit[l] = emu::LaneMask{1} << l;
+    return bit;
+}();
 
-Vec4 factor(Blend f, const Vec4& s, const Vec4& d, const Vec4& constant) {
-    switch (f) {
-    case Blend::Zero: return {0.0f, 0.0f, 0.0f, 0.0f};
-    case Blend::One: return {1.0f, 1.0f, 1.0f, 1.0f};
-    case Blend::SrcColor: return s;
-    case Blend::InvSrcColor: return {1.0f - s[0], 1.0f - s[1], 1.0f - s[2], 1.0f - s[3]};
-    case Blend::SrcAlpha: case Blend::BothSrcAlpha: return {s[3], s[3], s[3], s[3]};
-    case Blend::InvSrcAlpha: case Blend::BothInvSrcAlpha: {
-        const float a = 1.0f - s[3];
-        return {a, a, a, a};
-    }
-    case Blend::DestAlpha: return {d[3], d[3], d[3], d[3]};
-    case Blend::InvDestAlpha: {
-        const float a = 1.0f - d[3];
-        return {a, a, a, a};
-    }
-    case Blend::DestColor: return d;
-    case Blend::InvDestColor: return {1.0f - d[0], 1.0f - d[1], 1.0f - d[2], 1.0f - d[3]};
-    case Blend::SrcAlphaSat: {
-        const float f2 = std::min(s[3], 1.0f - d[3]);
-        return {f2, f2, f2, 1.0f};
-    }
-    case Blend::BlendFactor: return constant;
-    case Blend::InvBlendFactor:
-        return {1.0f - constant[0], 1.0f - constant[1], 1.0f - constant[2], 1.0f - constant[3]};
-    }
-    return {0.0f, 0.0f, 0.0f, 0.0f};
+// One channel of every lane of a batch. The blend rules below are templates over the value
+// type: the generic path runs them on one float per pixel, the 8-bit fast path on whole
+// batches (one switch per batch instead of one per pixel, and loops the compiler vectorizes).
+struct Lanes {
+    std::array<float, kLanes> v;
+    Lanes() = default;
+    explicit Lanes(float x) { v.fill(x); }
+};
+Lanes operator+(const Lanes& a, const Lanes& b) {
+    Lanes r;
+    for (unsigned l = 0; l < kLanes; ++l) r.v[l] = a.v[l] + b.v[l];
+    return r;
+}
+Lanes operator-(const Lanes& a, const Lanes& b) {
+    Lanes r;
+    for (unsigned l = 0; l < kLanes; ++l) r.v[l] = a.v[l] - b.v[l];
+    return r;
+}
+Lanes operator-(float a, const Lanes& b) {
+    Lanes r;
+    for (unsigned l = 0; l < kLanes; ++l) r.v[l] = a - b.v[l];
+    return r;
+}
+Lanes operator*(const Lanes& a, const Lanes& b) {
+    Lanes r;
+    for (unsigned l = 0; l < kLanes; ++l) r.v[l] = a.v[l] * b.v[l];
+    return r;
+}
+// std::min / std::max, lane by lane (same NaN behaviour: the first argument unless the
+// comparison holds).
+float min_of(float a, float b) { return std::min(a, b); }
+float max_of(float a, float b) { return std::max(a, b); }
+Lanes min_of(const Lanes& a, const Lanes& b) {
+    Lanes r;
+    for (unsigned l = 0; l < kLanes; ++l) r.v[l] = b.v[l] < a.v[l] ? b.v[l] : a.v[l];
+    return r;
+}
+Lanes max_of(const Lanes& a, const Lanes& b) {
+    Lanes r;
+    for (unsigned l = 0; l < kLanes; ++l) r.v[l] = a.v[l] < b.v[l] ? b.v[l] : a.v[l];
+    return r;
 }
 
-float combine(BlendOp op, float s, float fs, float d, float fd) {
+// Clamp to [0, 1]; NaN and -0 -> +0.
+float saturate(float v) {
+    const float c = v > 0.0f ? v : 0.0f;
+    return c < 1.0f ? c : 1.0f;
+}
+void saturate(Lanes& x) {
+    for (float& v : x.v) v = saturate(v);
+}
+
+template <typename T>
+using Rgba = std::array<T, 4>;
+
+// Channel c (0-2 colour, 3 alpha) of blend factor f (§12) for source s, destination d and
+// BLENDFACTOR k.
+template <typename T>
+T factor(Blend f, unsigned c, const Rgba<T>& s, const Rgba<T>& d, const Vec4& k) {
+    switch (f) {
+    case Blend::Zero: return T(0.0f);
+    case Blend::One: return T(1.0f);
+    case Blend::SrcColor: return s[c];
+    case Blend::InvSrcColor: return 1.0f - s[c];
+    case Blend::SrcAlpha: case Blend::BothSrcAlpha: return s[3];
+    case Blend::InvSrcAlpha: case Blend::BothInvSrcAlpha: return 1.0f - s[3];
+    case Blend::DestAlpha: return d[3];
+    case Blend::InvDestAlpha: return 1.0f - d[3];
+    case Blend::DestColor: return d[c];
+    case Blend::InvDestColor: return 1.0f - d[c];
+    case Blend::SrcAlphaSat: return c < 3 ? min_of(s[3], 1.0f - d[3]) : T(1.0f);  // (f, f, f, 1)
+    case Blend::BlendFactor: return T(k[c]);
+    case Blend::InvBlendFactor: return T(1.0f - k[c]);
+    }
+    return T(0.0f);
+}
+
+template <typename T>
+T combine(BlendOp op, const T& s, const T& fs, const T& d, const T& fd) {
     switch (op) {
     case BlendOp::Add: return s * fs + d * fd;
     case BlendOp::Subtract: return s * fs - d * fd;
     case BlendOp::RevSubtract: return d * fd - s * fs;
-    case BlendOp::Min: return std::min(s, d);
-    case BlendOp::Max: return std::max(s, d);
+    case BlendOp::Min: return min_of(s, d);
+    case BlendOp::Max: return max_of(s, d);
     }
     return s;
+}
+
+// §12 without the clamps: colour with SRCBLEND/DESTBLEND/BLENDOP, alpha with the alpha ones.
+template <typename T>
+Rgba<T> blend_unclamped(const BlendState& b, const Rgba<T>& s, const Rgba<T>& d) {
+    Rgba<T> r;
+    for (unsigned c = 0; c < 3; ++c)
+        r[c] = combine(b.op, s[c], factor(b.src, c, s, d, b.factor), d[c], factor(b.dst, c, s, d, b.factor));
+    r[3] = combine(b.op_alpha, s[3], factor(b.src_alpha, 3, s, d, b.factor), d[3],
+                   factor(b.dst_alpha, 3, s, d, b.factor));
+    return r;
+}
+
+// The 8-bit fast path: render targets whose stored channels are each an 8-bit UNORM in its own
+// byte of a 4-byte texel (A8R8G8B8, X8R8G8B8, A8B8G8R8, X8B8G8R8), read and written in place.
+// Channels the format lacks read as their layout says (X8: alpha 1) and store nothing (the
+// byte stays 0, as layout::encode leaves it).
+struct Unorm8Texel {
+    bool valid = false;
+    std::array<int8_t, 4> shift{};  // bit of the channel's byte in the texel; -1: not stored
+    Vec4 missing{};                 // value read for a channel that is not stored
+};
+
+Unorm8Texel unorm8_layout(const FormatInfo& info) {
+    Unorm8Texel t;
+    const layout::Layout lay = layout::layout_of(info.format);
+    if (!lay.valid || info.bytes != 4 || info.kind != FormatKind::Color) return t;
+    unsigned used = 0;
+    for (unsigned c = 0; c < 4; ++c) {
+        const layout::Channel ch = lay.rgba[c];
+        t.shift[c] = -1;
+        if (ch.type == layout::Type::Zero || ch.type == layout::Type::One) {
+            t.missing[c] = ch.type == layout::Type::One ? 1.0f : 0.0f;
+            continue;
+        }
+        if (ch.type != layout::Type::Unorm || ch.bits != 8 || ch.shift % 8 != 0 || ch.shift >= 32) return t;
+        if (used >> (ch.shift / 8) & 1u) return t;  // one byte for several channels (luminance)
+        used |= 1u << (ch.shift / 8);
+        t.shift[c] = static_cast<int8_t>(ch.shift);
+    }
+    t.valid = true;
+    return t;
+}
+
+// The fast-path layout of a format_table() entry, worked out once per format.
+const Unorm8Texel& unorm8_texel(const FormatInfo& info) {
+    static const std::vector<Unorm8Texel> table = [] {
+        std::vector<Unorm8Texel> t;
+        for (const FormatInfo& f : format_table()) t.push_back(unorm8_layout(f));
+        return t;
+    }();
+    return table[static_cast<size_t>(&info - format_table().data())];
+}
+
+// layout::decode of an 8-bit UNORM: v / 255 in float.
+float decode_unorm8(uint32_t v) { return static_cast<float>(v) / 255.0f; }
+
+// layout::encode of an 8-bit UNORM, floor(clamp(double(v) * 255, 0, 255) + 0.5) with NaN -> 0,
+// for values already clamped in float (four lanes an instruction, not two): double(v) * 255 is
+// exact (24 + 8 significant bits), so clamping it gives exactly double(saturate(v)) * 255. The
+// sum lies in [0.5, 255.5], where truncation (which vectorizes without SSE4.1) equals floor.
+// Writes bits [shift, shift + 8) of each lane's texel.
+void encode_unorm8(const Lanes& unit, unsigned shift, std::array<uint32_t, kLanes>& texel) {
+    for (unsigned l = 0; l < kLanes; ++l)
+        texel[l] |= static_cast<uint32_t>(static_cast<int32_t>(static_cast<double>(unit.v[l]) * 255.0 + 0.5)) << shift;
+}
+
+// Whether the lanes' pixel keys are pairwise different. The fast path reads every texel before
+// it writes any; the per-pixel path would let a later lane see an earlier lane's store, so a
+// batch with a repeated pixel (which the rasterizer never makes) takes that path. quad_order:
+// every lane's pixel has the parity of its place in its 2x2 quad (interpolate()'s order), so
+// only lanes at the same place in different quads can share a pixel.
+bool distinct_pixels(const std::array<uint32_t, kLanes>& key, bool quad_order) {
+    unsigned same = 0;
+    if (quad_order) {
+        for (unsigned a = 0; a < kLanes; a += 4)
+            for (unsigned b = a + 4; b < kLanes; b += 4)
+                for (unsigned i = 0; i < 4; ++i) same += key[a + i] == key[b + i] ? 1u : 0u;
+        return same == 0;
+    }
+    for (unsigned i = 0; i < kLanes; ++i)
+        for (unsigned j = 0; j < kLanes; ++j) same += key[i] == key[j] ? 1u : 0u;
+    return same == kLanes;
+}
+
+// Blending, write mask and store for the lanes in `write` of one fast-path target (every lane
+// inside the surface). src: the shader colour of each lane.
+void merge_unorm8(const BlendState& b, const Unorm8Texel& fmt, Surface& surface, uint32_t mask,
+                  const Rgba<Lanes>& src, const std::array<size_t, kLanes>& offset, emu::LaneMask write) {
+    std::byte* const bytes = surface.bytes().data();
+    Rgba<Lanes> dst, blended;
+    if (b.enable || mask != 0xF) {
+        std::array<uint32_t, kLanes> stored{};
+        for (unsigned l = 0; l < kLanes; ++l)
+            if (write >> l & 1u) std::memcpy(&stored[l], bytes + offset[l], 4);
+        for (unsigned c = 0; c < 4; ++c) {
+            if (fmt.shift[c] < 0) {
+                dst[c] = Lanes(fmt.missing[c]);
+                continue;
+            }
+            const auto shift = static_cast<unsigned>(fmt.shift[c]);
+            for (unsigned l = 0; l < kLanes; ++l) dst[c].v[l] = decode_unorm8(stored[l] >> shift & 0xFFu);
+        }
+    }
+    Rgba<Lanes> clamped = src;
+    for (Lanes& c : clamped) saturate(c);
+    if (b.enable) {
+        blended = blend_unclamped(b, clamped, dst);
+        for (Lanes& c : blended) saturate(c);
+    }
+    const Rgba<Lanes>& out = b.enable ? blended : clamped;  // in [0, 1], as is dst
+    std::array<uint32_t, kLanes> packed{};
+    for (unsigned c = 0; c < 4; ++c) {
+        if (fmt.shift[c] < 0) continue;
+        // A masked channel stores what it read (which encodes back to the same byte).
+        encode_unorm8(mask >> c & 1u ? out[c] : dst[c], static_cast<unsigned>(fmt.shift[c]), packed);
+    }
+    for (unsigned l = 0; l < kLanes; ++l)
+        if (write >> l & 1u) std::memcpy(bytes + offset[l], &packed[l], 4);
 }
 
 }  // namespace
@@ -125,11 +302,7 @@ Vec4 blend(const BlendState& b, const Vec4& src_in, const Vec4& dst, bool fixed_
     Vec4 src = src_in;
     if (fixed_point)
         for (float& c : src) c = saturate(c);
-    const Vec4 fs = factor(b.src, src, dst, b.factor), fd = factor(b.dst, src, dst, b.factor);
-    const Vec4 fsa = factor(b.src_alpha, src, dst, b.factor), fda = factor(b.dst_alpha, src, dst, b.factor);
-    Vec4 r;
-    for (unsigned c = 0; c < 3; ++c) r[c] = combine(b.op, src[c], fs[c], dst[c], fd[c]);
-    r[3] = combine(b.op_alpha, src[3], fsa[3], dst[3], fda[3]);
+    Vec4 r = blend_unclamped(b, src, dst);
     if (fixed_point)
         for (float& c : r) c = saturate(c);
     return r;
@@ -139,27 +312,27 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
     const emu::Batch& batch = *in.batch;
     const PixelLanes& lanes = *in.lanes;
     emu::LaneMask live = in.live & ~batch.killed;
-    if (lanes.quad_count * 4 < emu::kBatchLanes) live &= (emu::LaneMask{1} << (lanes.quad_count * 4)) - 1;
+    if (lanes.quad_count * 4 < kLanes) live &= (emu::LaneMask{1} << (lanes.quad_count * 4)) - 1;
 
     // Depth of each lane: oDepth (no bias) or the interpolated, biased depth.
-    std::array<float, emu::kBatchLanes> depth = lanes.depth;
-    if (in.shader_depth)
-        for (unsigned l = 0; l < emu::kBatchLanes; ++l) depth[l] = batch.depth()[0][l];
+    std::array<float, kLanes> depth = lanes.depth;
+    if (in.shader_depth) depth = batch.depth()[0];
     for (float& z : depth) z = saturate(z);
 
     // oC0 after fog (§7 step 2).
-    std::array<Vec4, emu::kBatchLanes> color0;
-    for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-        for (unsigned c = 0; c < 4; ++c) color0[l][c] = batch.render_target(0)[c][l];
-        if (s.fog_enable) {
-            const float f = fog_factor(s, lanes.fog[l], depth[l]);
-            for (unsigned c = 0; c < 3; ++c) color0[l][c] = f * color0[l][c] + (1.0f - f) * s.fog_color[c];
-        }
+    Rgba<Lanes> color0;
+    for (unsigned c = 0; c < 4; ++c) color0[c].v = batch.render_target(0)[c];
+    if (s.fog_enable) {
+        std::array<float, kLanes> f;
+        for (unsigned l = 0; l < kLanes; ++l) f[l] = fog_factor(s, lanes.fog[l], depth[l]);
+        for (unsigned c = 0; c < 3; ++c)
+            for (unsigned l = 0; l < kLanes; ++l)
+                color0[c].v[l] = f[l] * color0[c].v[l] + (1.0f - f[l]) * s.fog_color[c];
     }
     // Alpha test (§10): failing pixels never reach the stencil stage.
     if (s.alpha_test)
-        for (unsigned l = 0; l < emu::kBatchLanes; ++l)
-            if ((live >> l & 1u) && !alpha_test_passes(s, color0[l][3])) live &= ~(emu::LaneMask{1} << l);
+        for (unsigned l = 0; l < kLanes; ++l)
+            if ((live >> l & 1u) && !alpha_test_passes(s, color0[3].v[l])) live &= ~(emu::LaneMask{1} << l);
     // Stencil, depth, stencil update (§11).
     if (!in.depth_stencil_done)
         live = depth_stencil_test(s.depth_stencil, targets.depth_stencil, lanes.x, lanes.y, depth, live,
@@ -175,25 +348,52 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
         if (!info || !info->render_target || surface->depth() != 1) continue;  // not a target
         const bool fixed = !is_float_target(surface->format());
         const bool srgb = t == 0 && s.srgb_write && info->srgb;
-        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-            if (!(live >> l & 1u)) continue;
-            if (lanes.x[l] < 0 || lanes.y[l] < 0 || static_cast<uint32_t>(lanes.x[l]) >= surface->width() ||
-                static_cast<uint32_t>(lanes.y[l]) >= surface->height())
+        // The live lanes inside the surface, and a key per lane that differs between pixels (one
+        // vectorized loop: no branches).
+        emu::LaneMask write = 0;
+        std::array<uint32_t, kLanes> key;
+        uint32_t misplaced = 0;  // a lane not at its place in a 2x2 quad (see distinct_pixels)
+        const uint32_t width = surface->width(), height = surface->height();
+        for (unsigned l = 0; l < kLanes; ++l) {
+            // Negative coordinates wrap to values above any size.
+            const auto x = static_cast<uint32_t>(lanes.x[l]), y = static_cast<uint32_t>(lanes.y[l]);
+            const bool inside = ((live & kLaneBit[l]) != 0) & (x < width) & (y < height);
+            write |= inside ? kLaneBit[l] : 0u;
+            key[l] = inside ? y * width + x : 0x80000000u | l;  // outside: unlike every pixel (16384^2 < 2^31)
+            misplaced |= inside && ((x & 1u) | (y & 1u) << 1) != (l & 3u) ? 1u : 0u;
+        }
+        if (!write) continue;
+        Rgba<Lanes> other;
+        if (t != 0)
+            for (unsigned c = 0; c < 4; ++c) other[c].v = batch.render_target(t)[c];
+        const Rgba<Lanes>& src = t == 0 ? color0 : other;
+
+        if (!srgb && !in.generic_path) {
+            const Unorm8Texel& fmt = unorm8_texel(*info);
+            if (fmt.valid && distinct_pixels(key, misplaced == 0)) {
+                std::array<size_t, kLanes> offset;  // used for the lanes in `write` only
+                for (unsigned l = 0; l < kLanes; ++l)
+                    offset[l] = static_cast<size_t>(lanes.y[l]) * surface->row_pitch() +
+                                static_cast<size_t>(lanes.x[l]) * 4;
+                merge_unorm8(s.blend, fmt, *surface, mask, src, offset, write);
                 continue;
+            }
+        }
+
+        // Every other target: one pixel at a time through the surface's texel conversions.
+        for (unsigned l = 0; l < kLanes; ++l) {
+            if (!(write >> l & 1u)) continue;
             const auto px = static_cast<uint32_t>(lanes.x[l]), py = static_cast<uint32_t>(lanes.y[l]);
-            Vec4 src;
-            if (t == 0) src = color0[l];
-            else
-                for (unsigned c = 0; c < 4; ++c) src[c] = batch.render_target(t)[c][l];
+            const Vec4 lane_src{src[0].v[l], src[1].v[l], src[2].v[l], src[3].v[l]};
             const bool need_dst = s.blend.enable || mask != 0xF;
             Vec4 stored{};
             if (need_dst) stored = surface->read(px, py, 0);
-            Vec4 out = src;
+            Vec4 out = lane_src;
             if (s.blend.enable) {
                 Vec4 dst = stored;
                 if (srgb)
                     for (unsigned c = 0; c < 3; ++c) dst[c] = srgb_to_linear(dst[c]);
-                out = blend(s.blend, src, dst, fixed);
+                out = blend(s.blend, lane_src, dst, fixed);
             }
             if (srgb)
                 for (unsigned c = 0; c < 3; ++c) out[c] = linear_to_srgb(saturate(out[c]));

@@ -70,8 +70,14 @@ struct MergeInput {
     uint8_t color_outputs = 1;             // oC# the shader writes (bit n)
     bool shader_depth = false;             // oDepth written: replaces the biased depth
     bool depth_stencil_done = false;       // an early depth/stencil test already ran on `live`
+    // Tests only: store every target through the per-pixel path (Surface::read/write), which
+    // the 8-bit fast path must match byte for byte.
+    bool generic_path = false;
 };
 // Runs every per-pixel operation for the live lanes; returns the lanes that wrote colour.
+// Targets whose channels are each an 8-bit UNORM byte of a 4-byte texel (A8R8G8B8, X8R8G8B8,
+// A8B8G8R8, X8B8G8R8) without sRGB write are blended a whole batch at a time on the stored
+// bytes; every other target goes pixel by pixel through Surface::read/write. Same bytes either way.
 emu::LaneMask merge(const OutputMergerState& state, RenderTargets& targets, const MergeInput& input);
 
 }  // namespace sm2::runtime

@@ -1,0 +1,350 @@
+// The output merger's 8-bit fast path (A8R8G8B8, X8R8G8B8, A8B8G8R8 and X8B8G8R8 targets
+// without sRGB write, blended a batch at a time on the stored bytes) against the per-pixel path
+// through Surface::read/write (MergeInput::generic_path): random states and batches must leave
+// the same bytes in every target and in the depth/stencil surface. Plus worked examples.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <optional>
+#include <random>
+#include <vector>
+
+#include "sm2/runtime/output_merger.h"
+
+namespace sm2::runtime {
+namespace {
+
+constexpr unsigned kLanes = emu::kBatchLanes;
+
+// One merge() call's inputs: up to four colour targets, an optional D24S8 surface, the state.
+struct Case {
+    std::array<std::optional<Surface>, kMaxRenderTargets> color;
+    std::optional<DepthStencilSurface> depth;
+    OutputMergerState state;
+    emu::Batch batch;
+    PixelLanes lanes;
+    MergeInput input;
+
+    // Runs merge() on copies of the surfaces; returns the live mask and leaves the copies in `out`.
+    emu::LaneMask run(bool generic, Case& out) const {
+        out.color = color;
+        out.depth = depth;
+        RenderTargets targets;
+        for (unsigned t = 0; t < kMaxRenderTargets; ++t) targets.color[t] = out.color[t] ? &*out.color[t] : nullptr;
+        targets.depth_stencil = out.depth ? &*out.depth : nullptr;
+        MergeInput in = input;
+        in.batch = &batch;
+        in.lanes = &lanes;
+        in.generic_path = generic;
+        return merge(state, targets, in);
+    }
+};
+
+// Runs `c` both ways and checks every stored byte; returns false (with a message) on a mismatch.
+::testing::AssertionResult same_both_ways(const Case& c) {
+    Case fast, generic;
+    const emu::LaneMask a = c.run(false, fast), b = c.run(true, generic);
+    if (a != b) return ::testing::AssertionFailure() << "live mask " << a << " vs " << b;
+    for (unsigned t = 0; t < kMaxRenderTargets; ++t) {
+        if (!c.color[t]) continue;
+        const auto& fb = fast.color[t]->bytes();
+        const auto& gb = generic.color[t]->bytes();
+        for (size_t i = 0; i < fb.size(); ++i)
+            if (fb[i] != gb[i])
+                return ::testing::AssertionFailure()
+                       << "target " << t << " (format " << static_cast<uint32_t>(c.color[t]->format()) << ") byte "
+                       << i << ": fast " << static_cast<unsigned>(fb[i]) << ", generic "
+                       << static_cast<unsigned>(gb[i]);
+    }
+    if (c.depth)
+        for (uint32_t y = 0; y < c.depth->height(); ++y)
+            for (uint32_t x = 0; x < c.depth->width(); ++x)
+                if (fast.depth->stored_depth(x, y) != generic.depth->stored_depth(x, y) ||
+                    fast.depth->stencil(x, y) != generic.depth->stencil(x, y))
+                    return ::testing::AssertionFailure() << "depth/stencil at " << x << "," << y;
+    return ::testing::AssertionSuccess();
+}
+
+class Random {
+public:
+    explicit Random(uint32_t seed) : rng_(seed) {}
+    uint32_t below(uint32_t n) { return std::uniform_int_distribution<uint32_t>(0, n - 1)(rng_); }
+    bool chance(double p) { return std::bernoulli_distribution(p)(rng_); }
+    float uniform(float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(rng_); }
+    uint32_t bits() { return static_cast<uint32_t>(rng_()); }
+
+    // A colour channel: ordinary values, values beside the 8-bit rounding boundaries, and
+    // specials (NaN of either sign, infinities, zeros, huge, denormal, any bit pattern).
+    float colour() {
+        switch (below(8)) {
+        case 0: case 1: return uniform(0.0f, 1.0f);
+        case 2: return uniform(-2.0f, 3.0f);
+        case 3: return static_cast<float>(below(256)) / 255.0f;
+        case 4: {  // (k + 0.5) / 255 give or take a few ulps
+            float v = (static_cast<float>(below(256)) + 0.5f) / 255.0f;
+            for (int steps = static_cast<int>(below(9)) - 4; steps != 0; steps += steps > 0 ? -1 : 1)
+                v = std::nextafter(v, steps > 0 ? 2.0f : -2.0f);
+            return v;
+        }
+        case 5: {
+            static const float kSpecial[] = {
+                std::numeric_limits<float>::quiet_NaN(), -std::numeric_limits<float>::quiet_NaN(),
+                std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
+                0.0f, -0.0f, 1.0f, -1.0f, 1e30f, -1e30f, 1e-40f, std::numeric_limits<float>::max(),
+                std::nextafter(1.0f, 2.0f), std::nextafter(1.0f, 0.0f), std::nextafter(0.0f, 1.0f), 0.5f};
+            return kSpecial[below(std::size(kSpecial))];
+        }
+        case 6: return std::bit_cast<float>(bits());
+        default: return uniform(0.9f, 1.1f);
+        }
+    }
+    template <typename E>
+    E pick(uint32_t first, uint32_t last) { return static_cast<E>(first + below(last - first + 1)); }
+
+private:
+    std::mt19937 rng_;
+};
+
+// Render-target colour formats, with the fast path's four weighted up.
+std::vector<Format> target_formats() {
+    std::vector<Format> formats;
+    for (const FormatInfo& info : format_table())
+        if (info.render_target && info.kind == FormatKind::Color) formats.push_back(info.format);
+    for (int i = 0; i < 3; ++i)
+        formats.insert(formats.end(), {Format::A8R8G8B8, Format::A8R8G8B8, Format::X8R8G8B8, Format::A8B8G8R8,
+                                       Format::X8B8G8R8});
+    return formats;
+}
+
+Surface random_surface(Random& r, Format f, uint32_t w, uint32_t h) {
+    Surface s(f, w, h);
+    for (std::byte& b : s.bytes()) b = static_cast<std::byte>(r.below(256));
+    if (is_float_target(f) && r.chance(0.7))  // random bits are mostly NaN or huge
+        s.fill({r.uniform(0, 1), r.uniform(0, 1), r.uniform(0, 1), r.uniform(0, 1)});
+    return s;
+}
+
+RenderState random_state(Random& r) {
+    RenderState rs;
+    rs.alpha_blend_enable = r.chance(0.7);
+    rs.src_blend = r.pick<Blend>(1, 15);
+    rs.dest_blend = r.pick<Blend>(1, 15);
+    rs.blend_op = r.pick<BlendOp>(1, 5);
+    rs.separate_alpha_blend_enable = r.chance(0.4);
+    rs.src_blend_alpha = r.pick<Blend>(1, 15);
+    rs.dest_blend_alpha = r.pick<Blend>(1, 15);
+    rs.blend_op_alpha = r.pick<BlendOp>(1, 5);
+    rs.blend_factor = r.chance(0.3) ? 0xFFFFFFFFu : r.bits();
+    for (uint32_t& m : rs.color_write_enable) m = r.chance(0.5) ? 0xF : r.below(16);
+    rs.fog_enable = r.chance(0.3);
+    rs.fog_table_mode = r.pick<FogMode>(0, 3);
+    rs.fog_start = r.uniform(-0.5f, 0.5f);
+    rs.fog_end = r.chance(0.1) ? rs.fog_start : r.uniform(0.5f, 1.5f);
+    rs.fog_density = r.uniform(0.0f, 4.0f);
+    rs.fog_color = r.bits();
+    rs.alpha_test_enable = r.chance(0.3);
+    rs.alpha_func = r.pick<CompareFunc>(1, 8);
+    rs.alpha_ref = r.bits();
+    rs.srgb_write_enable = r.chance(0.15);
+    rs.z_enable = r.chance(0.5) ? ZBufferType::True : ZBufferType::False;
+    rs.z_func = r.pick<CompareFunc>(1, 8);
+    rs.z_write_enable = r.chance(0.5);
+    rs.stencil_enable = r.chance(0.3);
+    rs.stencil.func = r.pick<CompareFunc>(1, 8);
+    rs.stencil.pass = r.pick<StencilOp>(1, 8);
+    rs.stencil.fail = r.pick<StencilOp>(1, 8);
+    rs.stencil.zfail = r.pick<StencilOp>(1, 8);
+    rs.stencil_ref = r.below(256);
+    return rs;
+}
+
+Case random_case(Random& r, const std::vector<Format>& formats) {
+    Case c;
+    const uint32_t w = 4 + r.below(9), h = 4 + r.below(9);
+    for (unsigned t = 0; t < kMaxRenderTargets; ++t)
+        if (t == 0 || r.chance(0.25))
+            c.color[t] = random_surface(r, formats[r.below(static_cast<uint32_t>(formats.size()))], w, h);
+    if (r.chance(0.4)) {
+        c.depth = std::move(DepthStencilSurface::create(Format::D24S8, w, h).surface);
+        for (uint32_t y = 0; y < h; ++y)
+            for (uint32_t x = 0; x < w; ++x) {
+                c.depth->set_stored_depth(x, y, r.below(1u << 24));
+                c.depth->set_stencil(x, y, r.below(256));
+            }
+    }
+    c.state = output_merger_state(random_state(r));
+
+    PixelLanes& l = c.lanes;
+    l.quad_count = 1 + r.below(4);
+    l.clockwise = r.chance(0.5);
+    const bool repeats = r.chance(0.05);        // lanes anywhere, pixels may repeat
+    const bool repeated_quads = r.chance(0.05);  // quads may repeat
+    for (unsigned q = 0; q < l.quad_count; ++q) {
+        // 2x2 quads at distinct even positions, some hanging over an edge.
+        int32_t qx = 0, qy = 0;
+        for (bool fresh = false; !fresh;) {
+            if (repeated_quads) {
+                qx = 2 * static_cast<int32_t>(r.below(2));
+                qy = 0;
+                break;
+            }
+            qx = 2 * static_cast<int32_t>(r.below(w / 2 + 2)) - 2;
+            qy = 2 * static_cast<int32_t>(r.below(h / 2 + 2)) - 2;
+            fresh = true;
+            for (unsigned p = 0; p < q; ++p) fresh &= !(l.x[4 * p] == qx && l.y[4 * p] == qy);
+        }
+        for (unsigned i = 0; i < 4; ++i) {
+            l.x[4 * q + i] = repeats ? static_cast<int32_t>(r.below(w + 1)) - 1 : qx + static_cast<int32_t>(i & 1u);
+            l.y[4 * q + i] = repeats ? static_cast<int32_t>(r.below(3)) : qy + static_cast<int32_t>(i >> 1);
+        }
+    }
+    for (unsigned i = 0; i < kLanes; ++i) {
+        l.depth[i] = r.uniform(-0.2f, 1.2f);
+        l.fog[i] = r.chance(0.1) ? r.colour() : r.uniform(-0.2f, 1.2f);
+        for (unsigned t = 0; t < kMaxRenderTargets; ++t)
+            c.batch.set(c.batch.render_target(t), i, r.colour(), r.colour(), r.colour(), r.colour());
+        c.batch.depth()[0][i] = r.uniform(-0.2f, 1.2f);
+    }
+    c.batch.killed = r.chance(0.2) ? r.below(1u << kLanes) : 0;
+    c.input.live = r.chance(0.6) ? emu::kAllLanes : r.below(1u << kLanes);
+    c.input.color_outputs = static_cast<uint8_t>(1u | r.below(16));
+    c.input.shader_depth = r.chance(0.2);
+    c.input.depth_stencil_done = r.chance(0.1);
+    return c;
+}
+
+TEST(OutputMergerFast, RandomBatchesMatchThePerPixelPath) {
+    const std::vector<Format> formats = target_formats();
+    Random r(20240611);
+    for (int i = 0; i < 20000; ++i) {
+        const Case c = random_case(r, formats);
+        ASSERT_TRUE(same_both_ways(c)) << "case " << i;
+    }
+}
+
+// Blending off, every channel written: the store's rounding for a sweep over [-0.5, 1.5] in
+// steps of 2^-18 and for the 64 floats either side of every rounding boundary (k + 0.5) / 255.
+TEST(OutputMergerFast, EncodeMatchesOverASweep) {
+    std::vector<float> values;
+    for (int i = -(1 << 17); i <= 3 << 17; ++i) values.push_back(static_cast<float>(i) / static_cast<float>(1 << 18));
+    for (int k = 0; k < 256; ++k) {
+        float up = (static_cast<float>(k) + 0.5f) / 255.0f, down = up;
+        for (int s = 0; s < 64; ++s) {
+            values.push_back(up);
+            values.push_back(down);
+            up = std::nextafter(up, 2.0f);
+            down = std::nextafter(down, -2.0f);
+        }
+    }
+    for (const Format f : {Format::A8R8G8B8, Format::X8R8G8B8, Format::A8B8G8R8}) {
+        Case c;
+        c.color[0] = Surface(f, 8, 2);
+        c.lanes.quad_count = 4;
+        for (unsigned i = 0; i < kLanes; ++i) {
+            c.lanes.x[i] = static_cast<int32_t>(2 * (i / 4) + (i & 1u));
+            c.lanes.y[i] = static_cast<int32_t>(i >> 1 & 1u);
+        }
+        c.input.live = emu::kAllLanes;
+        for (size_t at = 0; at < values.size(); at += 4 * kLanes) {
+            for (unsigned i = 0; i < 4 * kLanes; ++i) {
+                const float v = values[(at + i) % values.size()];
+                c.batch.render_target(0)[i % 4][i / 4] = v;
+            }
+            ASSERT_TRUE(same_both_ways(c)) << "values from " << at;
+        }
+    }
+}
+
+// One lane at (1, 1) of a 4x4 target whose texel there holds `stored`; returns the texel after.
+uint32_t merge_one(Format f, uint32_t stored, const RenderState& rs, const Vec4& colour, bool generic) {
+    Surface target(f, 4, 4);
+    std::memcpy(target.bytes().data() + target.row_pitch() + 4, &stored, 4);
+    emu::Batch batch;
+    batch.set(batch.render_target(0), 0, colour[0], colour[1], colour[2], colour[3]);
+    PixelLanes lanes;
+    lanes.quad_count = 1;
+    lanes.x[0] = lanes.y[0] = 1;
+    RenderTargets targets;
+    targets.color[0] = &target;
+    MergeInput in;
+    in.batch = &batch;
+    in.lanes = &lanes;
+    in.live = 1;
+    in.generic_path = generic;
+    EXPECT_EQ(merge(output_merger_state(rs), targets, in), 1u);
+    uint32_t texel;
+    std::memcpy(&texel, target.bytes().data() + target.row_pitch() + 4, 4);
+    return texel;
+}
+
+TEST(OutputMergerFast, SrcAlphaOverA8R8G8B8) {
+    // Stored 0xFF0080FF: (r, g, b, a) = (0, 128/255, 1, 1). Source (1, 0.5, 0, 0.5), SRCALPHA /
+    // INVSRCALPHA, so both factors are 0.5:
+    //   r = 1 * 0.5 + 0 * 0.5 = 0.5               -> 127.5 + 0.5 = 128 -> 0x80 (halves round up)
+    //   g = 0.25 + (128/255) * 0.5 = 0.500980...  -> 127.75 + 0.5      -> 128 -> 0x80
+    //   b = 0 * 0.5 + 1 * 0.5 = 0.5               -> 0x80
+    //   a = 0.5 * 0.5 + 1 * 0.5 = 0.75            -> 191.25 + 0.5      -> 191 -> 0xBF
+    RenderState rs;
+    rs.alpha_blend_enable = true;
+    rs.src_blend = Blend::SrcAlpha;
+    rs.dest_blend = Blend::InvSrcAlpha;
+    const Vec4 colour{1.0f, 0.5f, 0.0f, 0.5f};
+    EXPECT_EQ(merge_one(Format::A8R8G8B8, 0xFF0080FFu, rs, colour, false), 0xBF808080u);
+    EXPECT_EQ(merge_one(Format::A8R8G8B8, 0xFF0080FFu, rs, colour, true), 0xBF808080u);
+}
+
+TEST(OutputMergerFast, DestAlphaOfX8R8G8B8IsOneAndXIsCleared) {
+    // X8R8G8B8 reads alpha 1, so DESTALPHA / INVDESTALPHA gives source * 1 + dest * 0. Source
+    // (0.25, 0.75, 1, 0): r 63.75 + 0.5 -> 64 (0x40), g 191.25 + 0.5 -> 191 (0xBF), b 255;
+    // the X byte (0xAB before) is stored as 0.
+    RenderState rs;
+    rs.alpha_blend_enable = true;
+    rs.src_blend = Blend::DestAlpha;
+    rs.dest_blend = Blend::InvDestAlpha;
+    const Vec4 colour{0.25f, 0.75f, 1.0f, 0.0f};
+    EXPECT_EQ(merge_one(Format::X8R8G8B8, 0xAB102030u, rs, colour, false), 0x0040BFFFu);
+    EXPECT_EQ(merge_one(Format::X8R8G8B8, 0xAB102030u, rs, colour, true), 0x0040BFFFu);
+}
+
+TEST(OutputMergerFast, WriteMaskAndOutOfRangeColourOnA8B8G8R8) {
+    // A8B8G8R8 stores R in the low byte: 0x44332211 is (r, g, b, a) = (0x11, 0x22, 0x33, 0x44).
+    // No blending, COLORWRITEENABLE R|G|A, source (2, NaN, -1, 0.5): r clamps to 0xFF, NaN
+    // stores 0, b keeps 0x33, a = 127.5 + 0.5 -> 128 (0x80).
+    RenderState rs;
+    rs.color_write_enable[0] = kWriteRed | kWriteGreen | kWriteAlpha;
+    const Vec4 colour{2.0f, std::numeric_limits<float>::quiet_NaN(), -1.0f, 0.5f};
+    EXPECT_EQ(merge_one(Format::A8B8G8R8, 0x44332211u, rs, colour, false), 0x803300FFu);
+    EXPECT_EQ(merge_one(Format::A8B8G8R8, 0x44332211u, rs, colour, true), 0x803300FFu);
+}
+
+TEST(OutputMergerFast, RepeatedPixelSeesTheEarlierLane) {
+    // Two lanes on one pixel, ONE / ONE ADD over 0: lane 0 stores 0.25 -> 63.75 + 0.5 -> 64;
+    // lane 1 reads 64/255 = 0.25098 and adds 0.25: 0.50098 -> 127.75 + 0.5 -> 128 (0x80).
+    RenderState rs;
+    rs.alpha_blend_enable = true;
+    rs.dest_blend = Blend::One;
+    for (const bool generic : {false, true}) {
+        Surface target(Format::A8R8G8B8, 4, 4);
+        emu::Batch batch;
+        for (unsigned l = 0; l < 2; ++l) batch.set(batch.render_target(0), l, 0.25f, 0.25f, 0.25f, 0.25f);
+        PixelLanes lanes;
+        lanes.quad_count = 1;
+        RenderTargets targets;
+        targets.color[0] = &target;
+        MergeInput in;
+        in.batch = &batch;
+        in.lanes = &lanes;
+        in.live = 3;
+        in.generic_path = generic;
+        EXPECT_EQ(merge(output_merger_state(rs), targets, in), 3u);
+        uint32_t texel;
+        std::memcpy(&texel, target.bytes().data(), 4);
+        EXPECT_EQ(texel, 0x80808080u) << (generic ? "generic" : "fast");
+    }
+}
+
+}  // namespace
+}  // namespace sm2::runtime
