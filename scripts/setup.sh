@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   clang libclang-rt-14-dev          # libFuzzer and sanitizers for the fuzz targets
+  llvm-14-dev clang-14              # the shader JIT (emu/src/jit): LLVM ORC, clang++-14 for its kernels
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev
   libglm-dev

@@ -97,12 +97,23 @@ inline Real saturate(Real x) {
     return x > Real(0) ? (x < Real(1) ? x : Real(1)) : Real(0);
 }
 
+// NaN results are stored as one bit pattern, the positive quiet NaN (D3D9 specifies no
+// payload; GPUs return one canonical NaN). Which NaN an operation on two NaNs returns depends
+// on the order the compiler happened to give its operands (x86 returns the first one), so
+// without this the bytes of a NaN result would depend on the compiler: the interpreter built
+// by g++ or by clang, or the JIT. Applied once, when a step's result is stored.
+template <typename Real>
+inline Real canonical_nan(Real x) {
+    return x != x ? std::numeric_limits<Real>::quiet_NaN() : x;
+}
+
 // frc: x - floor(x), kept in [0, 1): a tiny negative x whose difference rounds up to 1 gives
 // the largest value below 1. frc(+-inf) = NaN (inf - inf), NaN stays NaN.
 template <typename Real>
 inline Real frc(Real x) {
+    constexpr Real below_one = Real(1) - std::numeric_limits<Real>::epsilon() / Real(2);  // nextafter(1, 0)
     const Real f = x - std::floor(x);
-    return f >= Real(1) ? std::nextafter(Real(1), Real(0)) : f;
+    return f >= Real(1) ? below_one : f;
 }
 
 // --- vector helpers ------------------------------------------------------------------------

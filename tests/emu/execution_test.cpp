@@ -2,6 +2,9 @@
 // address register, texkill masks and the sampler interface.
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <limits>
+
 #include "emu/engine_test_support.h"
 
 namespace sm2::test {
@@ -42,6 +45,23 @@ TEST(Execution, MissingInputComponentsRead0001) {
     batch.input(3)[0].fill(0.25f);  // the vertex declaration supplies only .x
     emu::execute(exe, exe.bind_constants(), batch);
     EXPECT_FLOAT4_EQ(lane_value(batch.position(), 7), 0.25f, 0.0f, 0.0f, 1.0f);
+}
+
+// NaN results are stored as the positive quiet NaN 0x7FC00000 whatever NaN the arithmetic made:
+// -NaN from the application (0xFFC00001), inf - inf (the default NaN x86 makes is 0xFFC00000),
+// and a NaN with a payload moved unchanged (0x7FC12345).
+TEST(Execution, NaNResultsAreStoredAsOneBitPattern) {
+    ProgramBuilder p(ShaderType::Vertex);
+    p.op(Opcode::Mov, rd(0), {c(0)}).op(Opcode::Add, rd(0).mask("y"), {c(1), c(1).neg()}).op(Opcode::Mov, oPos(), {r(0)});
+    const auto exe = lower_or_fail(p.program());
+    const float inf = std::numeric_limits<float>::infinity();
+    const std::vector<Float4> constants{
+        {std::bit_cast<float>(0xFFC00001u), 0.0f, std::bit_cast<float>(0x7FC12345u), 1.0f}, {inf, inf, inf, inf}};
+    emu::Batch batch;
+    emu::execute(exe, exe.bind_constants(constants), batch);
+    for (unsigned c = 0; c < 3; ++c)
+        EXPECT_EQ(std::bit_cast<uint32_t>(batch.position()[c][0]), 0x7FC00000u) << "component " << c;
+    EXPECT_EQ(batch.position()[3][0], 1.0f);
 }
 
 TEST(Execution, UnsetConstantsReadZero) {

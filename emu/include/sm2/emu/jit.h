@@ -1,0 +1,73 @@
+// The JIT: an Executable compiled to one native function (LLVM ORC) that runs its steps over a
+// Batch exactly as the interpreter does: the same kernels (the lane loops of every step are
+// compiled from the interpreter's own source, step_kernels.h), so every register, a0 and the
+// killed mask come out bit-identical, special values included.
+//
+//   std::string error;
+//   auto compiled = jit::compile(executable, &error);   // once per executable
+//   if (compiled) compiled->run(constants, batch, &sampler); else execute(executable, ...);
+//
+// A compiled shader keeps constants as a run-time argument, so one compilation serves every draw
+// of its executable. Any number of threads may run it at once, each with its own Batch.
+// Only float executables (fp32, fp24, fp16 rounding) compile; the fp64 reference mode stays in
+// the interpreter. Compiling costs milliseconds (a few for a short shader, 50-150 ms for 50
+// steps): worth it for an executable that runs many batches.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "sm2/emu/batch.h"
+#include "sm2/emu/executable.h"
+#include "sm2/emu/sampler.h"
+
+namespace sm2::emu::jit {
+
+// True when the engine was built with LLVM (CMake option SM2_JIT) and the host target could be
+// set up; compile() returns null otherwise.
+[[nodiscard]] bool available();
+
+class CompiledShader {
+public:
+    struct Code;  // the machine code of the shaders compiled together (opaque), freed with the last
+    // (made by compile() and compile_all())
+    CompiledShader(std::shared_ptr<Code> code, uintptr_t entry, unsigned constant_count, size_t step_count,
+                   double compile_seconds);
+    ~CompiledShader();
+    CompiledShader(const CompiledShader&) = delete;
+    CompiledShader& operator=(const CompiledShader&) = delete;
+
+    // What execute() does for the executable it was compiled from: every step over all lanes of
+    // `batch`. `sampler` may be null (texld then reads (0,0,0,1)); an exception it throws
+    // reaches the caller. std::invalid_argument when the constant file is smaller than the
+    // executable's constant count.
+    void run(const ConstantFile& constants, Batch& batch, Sampler* sampler = nullptr) const;
+
+    // Wall time the compilation took (kernels, code generation, optimization, machine code); for
+    // shaders compiled together by compile_all(), the time of the whole group.
+    [[nodiscard]] double compile_seconds() const { return compile_seconds_; }
+    [[nodiscard]] size_t step_count() const { return step_count_; }
+
+private:
+    std::shared_ptr<Code> code_;
+    uintptr_t entry_;
+    unsigned constant_count_;
+    size_t step_count_;
+    double compile_seconds_;
+};
+
+// Compiles `executable` for the host CPU. Null on failure (fp64 executable, no JIT in this
+// build, an LLVM error), with the reason in *error when given. Thread-safe.
+[[nodiscard]] std::shared_ptr<const CompiledShader> compile(const Executable& executable,
+                                                            std::string* error = nullptr);
+
+// Several executables at once (a pipeline's vertex and pixel shaders, a cache warming up): one
+// LLVM module, so the fixed cost of a compilation is paid once. One compiled shader per
+// executable, in order; empty on failure (with the reason in *error).
+[[nodiscard]] std::vector<std::shared_ptr<const CompiledShader>> compile_all(
+    std::span<const Executable* const> executables, std::string* error = nullptr);
+
+}  // namespace sm2::emu::jit

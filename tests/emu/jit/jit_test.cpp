@@ -1,0 +1,648 @@
+// The JIT against the interpreter: random executables (every opcode the interpreter runs, random
+// swizzles, negates, masks, saturate and rounding, every operand kind, mova then relative reads,
+// texkill, texld) and the sample shaders, on random batches full of special values (NaN with
+// payloads, +-inf, +-0, denormals, huge, tiny, halves). Every register component of every lane,
+// a0, the killed mask and every texture request must be the same bits.
+// Compile times and the speed of both on the sample shaders are printed, not asserted.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "emu/engine_test_support.h"
+#include "sm2/emu/jit.h"
+
+namespace sm2::test {
+namespace {
+
+using emu::OperandKind;
+using emu::ResultRounding;
+using emu::Step;
+using emu::StepSource;
+
+using Random = std::mt19937_64;
+
+unsigned pick(Random& random, unsigned count) { return static_cast<unsigned>(random() % count); }
+bool chance(Random& random, unsigned percent) { return pick(random, 100) < percent; }
+
+// A float from a mix meant to hit every special case of the numeric policy.
+float special_float(Random& random) {
+    const unsigned kind = pick(random, 24);
+    const bool negative = chance(random, 50);
+    float value = 0;
+    switch (kind) {
+    case 0: value = 0.0f; break;
+    case 1: value = std::numeric_limits<float>::infinity(); break;
+    case 2:  // quiet NaN with a random payload
+        value = std::bit_cast<float>(0x7FC00000u | static_cast<uint32_t>(random() & 0x3FFFFFu));
+        break;
+    case 3: value = std::bit_cast<float>(static_cast<uint32_t>(random() & 0x7FFFFFu) | 1u); break;  // denormal
+    case 4: value = std::bit_cast<float>(0x7F000000u | static_cast<uint32_t>(random() & 0x7FFFFFu)); break;  // huge
+    case 5: value = std::bit_cast<float>(0x00800000u | static_cast<uint32_t>(random() & 0x7FFFFFu)); break;  // tiny
+    case 6: value = 1.0f; break;
+    case 7: value = static_cast<float>(pick(random, 64)) * 0.5f; break;  // integers and halves
+    case 8: value = static_cast<float>(pick(random, 8)) * 0.25f; break;
+    case 9:  // fp24 / fp16 rounding boundaries, largest floats below an integer
+        value = std::nextafter(static_cast<float>(pick(random, 4)), 0.0f);
+        break;
+    case 10: value = 65504.0f + static_cast<float>(pick(random, 32)); break;
+    case 11: value = std::bit_cast<float>(static_cast<uint32_t>(random() & 0xFFFFFFFFu)); break;  // any bits
+    case 12: value = 127.9961f + static_cast<float>(pick(random, 3)) - 1.0f; break;  // lit's power clamp
+    case 13: value = std::ldexp(1.0f, static_cast<int>(pick(random, 60)) - 72); break;  // near fp24's floor
+    default: {
+        // ordinary values over a wide range of magnitudes
+        std::uniform_real_distribution<float> mantissa(1.0f, 2.0f);
+        value = std::ldexp(mantissa(random), static_cast<int>(pick(random, 40)) - 20);
+        break;
+    }
+    }
+    return negative ? -value : value;
+}
+
+// --- random executables ---------------------------------------------------------------------
+
+constexpr Opcode kOpcodes[] = {
+    Opcode::Mov,    Opcode::Abs, Opcode::Frc, Opcode::Sgn, Opcode::Add,    Opcode::Sub,  Opcode::Mul,     Opcode::Min,
+    Opcode::Max,    Opcode::Slt, Opcode::Sge, Opcode::Mad, Opcode::Cmp,    Opcode::Lrp,  Opcode::Dp3,     Opcode::Dp4,
+    Opcode::Dp2Add, Opcode::Rcp, Opcode::Rsq, Opcode::Exp, Opcode::ExpP,   Opcode::Log,  Opcode::LogP,    Opcode::Pow,
+    Opcode::Lit,    Opcode::Dst, Opcode::Crs, Opcode::Nrm, Opcode::SinCos, Opcode::Mova, Opcode::TexKill, Opcode::Tex,
+};
+
+// Which modes a random executable is built for.
+enum class Rounding { Fp32, Fp24, Fp16 };
+
+struct Mode {
+    Rounding rounding;
+    emu::Transcendentals transcendentals;
+};
+
+const char* mode_name(const Mode& mode) {
+    static const char* const names[3][2] = {{"fp32", "fp32/fast"}, {"fp24", "fp24/fast"}, {"fp16", "fp16/fast"}};
+    return names[static_cast<int>(mode.rounding)][mode.transcendentals == emu::Transcendentals::Fast];
+}
+
+class ProgramGenerator {
+public:
+    ProgramGenerator(Random& random, Mode mode, unsigned constant_count)
+        : random_(random), mode_(mode), constant_count_(constant_count) {}
+
+    emu::Executable generate(unsigned step_count) {
+        const bool pixel = mode_.rounding != Rounding::Fp32 || chance(random_, 50);
+        std::vector<Step> steps;
+        for (unsigned i = 0; i < step_count; ++i) steps.push_back(step(pixel, i));
+        const auto precision = mode_.rounding == Rounding::Fp24 ? emu::Precision::Fp24 : emu::Precision::Fp32;
+        return emu::Executable(isa::ShaderVersion{pixel ? ShaderType::Pixel : ShaderType::Vertex, 2, 0}, precision,
+                               constant_count_, std::move(steps), {}, step_count, mode_.transcendentals);
+    }
+
+private:
+    uint8_t nonzero_mask() { return static_cast<uint8_t>(1 + pick(random_, 15)); }
+
+    StepSource source(uint8_t channels) {
+        StepSource s;
+        s.channels = channels;
+        s.swizzle = static_cast<uint8_t>(chance(random_, 30) ? 0xE4 : pick(random_, 256));
+        s.negate = chance(random_, 30);
+        const unsigned kind = pick(random_, 100);
+        if (kind < 55) {
+            s.kind = OperandKind::Lanes;
+            s.index = static_cast<uint16_t>(pick(random_, emu::slot::kCount));
+        } else if (kind < 80) {
+            s.kind = OperandKind::Constant;
+            s.index = static_cast<uint16_t>(pick(random_, constant_count_));
+        } else if (kind < 95) {
+            s.kind = OperandKind::RelativeConstant;
+            s.index = static_cast<uint16_t>(pick(random_, constant_count_ + 8));
+            s.address_component = static_cast<uint8_t>(pick(random_, 4));
+        } else {
+            s.kind = OperandKind::Zero;
+        }
+        return s;
+    }
+
+    // A destination slot the lowering could write: a temp or an output.
+    uint16_t dest_slot() {
+        if (chance(random_, 70)) return static_cast<uint16_t>(emu::slot::kTempFirst + pick(random_, 12));
+        return static_cast<uint16_t>(emu::slot::kPosition + pick(random_, emu::slot::kCount - emu::slot::kPosition));
+    }
+
+    ResultRounding rounding() {
+        switch (mode_.rounding) {
+        case Rounding::Fp32: return ResultRounding::None;
+        case Rounding::Fp24: return chance(random_, 20) ? ResultRounding::Fp16 : ResultRounding::Fp24;  // _pp
+        case Rounding::Fp16: return ResultRounding::Fp16;
+        }
+        return ResultRounding::None;
+    }
+
+    Step step(bool pixel, unsigned index) {
+        Step step;
+        step.origin = index;
+        step.opcode = kOpcodes[pick(random_, std::size(kOpcodes))];
+        // a0 is read early and often: a third of the vertex steps that are not mova are mova.
+        if (!pixel && chance(random_, 8)) step.opcode = Opcode::Mova;
+        step.dest.slot = dest_slot();
+        step.dest.mask = nonzero_mask();
+        step.dest.saturate = chance(random_, 25);
+        step.dest.rounding = rounding();
+        // Which channels each source is read for, as lowering computes them.
+        std::array<uint8_t, 3> channels{step.dest.mask, step.dest.mask, step.dest.mask};
+        unsigned count = 1;
+        switch (step.opcode) {
+        case Opcode::Mov:
+        case Opcode::Abs:
+        case Opcode::Frc:
+        case Opcode::Sgn: count = 1; break;
+        case Opcode::Add:
+        case Opcode::Sub:
+        case Opcode::Mul:
+        case Opcode::Min:
+        case Opcode::Max:
+        case Opcode::Slt:
+        case Opcode::Sge: count = 2; break;
+        case Opcode::Mad:
+        case Opcode::Cmp:
+        case Opcode::Lrp: count = 3; break;
+        case Opcode::Dp3:
+            count = 2;
+            channels = {0x7, 0x7, 0};
+            break;
+        case Opcode::Dp4:
+            count = 2;
+            channels = {0xF, 0xF, 0};
+            break;
+        case Opcode::Dp2Add:
+            count = 3;
+            channels = {0x3, 0x3, 0x1};
+            break;
+        case Opcode::Rcp:
+        case Opcode::Rsq:
+        case Opcode::Exp:
+        case Opcode::ExpP:
+        case Opcode::Log:
+        case Opcode::LogP:
+            count = 1;
+            channels = {0x1, 0x1, 0x1};
+            break;
+        case Opcode::Pow:
+            count = 2;
+            channels = {0x1, 0x1, 0x1};
+            break;
+        case Opcode::Lit:
+        case Opcode::Nrm:
+            count = 1;
+            channels = {0xF, 0xF, 0xF};
+            break;
+        case Opcode::Dst:
+        case Opcode::Crs:
+            count = 2;
+            channels = {0xF, 0xF, 0xF};
+            break;
+        case Opcode::SinCos:
+            count = 1;
+            channels = {0x1, 0, 0};
+            break;
+        case Opcode::Mova:
+            count = 1;
+            step.dest = {};
+            step.dest.mask = nonzero_mask();
+            step.dest.address = true;
+            channels = {step.dest.mask, 0, 0};
+            break;
+        case Opcode::TexKill:
+            count = 1;
+            step.dest = {};
+            step.dest.mask = 0;
+            channels = {nonzero_mask(), 0, 0};
+            break;
+        case Opcode::Tex:
+            count = 1;
+            channels = {0xF, 0, 0};
+            step.sampler = static_cast<uint8_t>(pick(random_, 16));
+            step.control = static_cast<uint8_t>(pick(random_, 3));
+            step.dest.slot = static_cast<uint16_t>(emu::slot::kTempFirst + pick(random_, 12));
+            break;
+        default: break;
+        }
+        if (step.opcode == Opcode::Crs)
+            step.dest.mask = static_cast<uint8_t>((step.dest.mask & 0x7) ? step.dest.mask & 0x7 : 0x1);
+        if (step.opcode == Opcode::SinCos)
+            step.dest.mask = static_cast<uint8_t>((step.dest.mask & 0x3) ? step.dest.mask & 0x3 : 0x2);
+        if (step.opcode == Opcode::Mova) channels[0] = step.dest.mask;
+        step.source_count = static_cast<uint8_t>(count);
+        for (unsigned k = 0; k < count; ++k) step.sources[k] = source(channels[k]);
+        return step;
+    }
+
+    Random& random_;
+    Mode mode_;
+    unsigned constant_count_;
+};
+
+// --- a sampler that records what it is asked ---------------------------------------------------
+
+struct Request {
+    unsigned sampler;
+    emu::TextureVariant variant;
+    unsigned quad_count;
+    emu::LaneMask helper_lanes;
+    std::array<emu::FloatLanes, 4> coordinates;
+};
+
+bool same_bits(const Request& a, const Request& b) {
+    return a.sampler == b.sampler && a.variant == b.variant && a.quad_count == b.quad_count &&
+           a.helper_lanes == b.helper_lanes && std::memcmp(&a.coordinates, &b.coordinates, sizeof(a.coordinates)) == 0;
+}
+
+class RecordingSampler final : public emu::Sampler {
+public:
+    void sample(const emu::TextureRequest& request, std::array<emu::FloatLanes, 4>& texels) override {
+        requests.push_back(
+            {request.sampler, request.variant, request.quad_count, request.helper_lanes, *request.coordinates});
+        // A deterministic function of the coordinate bits, the component and the sampler; now
+        // and then a special value.
+        for (unsigned c = 0; c < 4; ++c)
+            for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+                uint64_t h = std::bit_cast<uint32_t>((*request.coordinates)[c][l]) * 0x9E3779B97F4A7C15ull;
+                h ^= (h >> 29) + c * 0x632BE59BD9B4E019ull + request.sampler * 0x85EBCA77C2B2AE63ull +
+                     static_cast<uint64_t>(request.variant);
+                h *= 0xBF58476D1CE4E5B9ull;
+                h ^= h >> 31;
+                const unsigned kind = static_cast<unsigned>(h % 16);
+                const float unit = static_cast<float>((h >> 8) & 0xFFFFFF) * 0x1p-24f;
+                texels[c][l] = kind == 0   ? std::numeric_limits<float>::quiet_NaN()
+                               : kind == 1 ? -std::numeric_limits<float>::infinity()
+                               : kind == 2 ? -unit
+                               : kind == 3 ? unit * 1e30f
+                                           : unit;
+            }
+    }
+    std::vector<Request> requests;
+};
+
+// --- batches ---------------------------------------------------------------------------------
+
+void randomize(emu::Batch& batch, Random& random, unsigned constant_count) {
+    for (auto& reg : batch.registers)
+        for (auto& component : reg)
+            for (float& value : component) value = special_float(random);
+    for (auto& component : batch.address)
+        for (int32_t& a : component) {
+            const unsigned kind = pick(random, 10);
+            a = kind == 0   ? std::numeric_limits<int32_t>::min()
+                : kind == 1 ? std::numeric_limits<int32_t>::max()
+                : kind == 2 ? -(1 << 30)  // mova of NaN
+                            : static_cast<int32_t>(pick(random, constant_count + 16)) - 8;
+        }
+    batch.killed = static_cast<emu::LaneMask>(chance(random, 50) ? random() & emu::kAllLanes : 0);
+    batch.lane_count = chance(random, 70) ? emu::kBatchLanes : 1 + pick(random, emu::kBatchLanes);
+}
+
+emu::ConstantFile random_constants(Random& random, unsigned count) {
+    emu::ConstantFile constants;
+    // Sometimes larger than the executable's count: relative reads may reach past it.
+    constants.registers.resize(count + (chance(random, 50) ? pick(random, 8) : 0));
+    for (auto& reg : constants.registers)
+        for (float& value : reg) value = special_float(random);
+    return constants;
+}
+
+// Compares every bit; describes the first differences.
+::testing::AssertionResult same_batches(const emu::Batch& interpreter, const emu::Batch& jit) {
+    std::ostringstream differences;
+    int shown = 0;
+    for (unsigned s = 0; s < emu::slot::kCount; ++s)
+        for (unsigned c = 0; c < 4; ++c)
+            for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+                const uint32_t a = std::bit_cast<uint32_t>(interpreter.registers[s][c][l]);
+                const uint32_t b = std::bit_cast<uint32_t>(jit.registers[s][c][l]);
+                if (a != b && shown++ < 8)
+                    differences << "slot " << s << " component " << c << " lane " << l << ": interpreter "
+                                << interpreter.registers[s][c][l] << " (0x" << std::hex << a << "), jit "
+                                << jit.registers[s][c][l] << " (0x" << b << std::dec << ")\n";
+            }
+    for (unsigned c = 0; c < 4; ++c)
+        for (unsigned l = 0; l < emu::kBatchLanes; ++l)
+            if (interpreter.address[c][l] != jit.address[c][l] && shown++ < 8)
+                differences << "a0 component " << c << " lane " << l << ": interpreter " << interpreter.address[c][l]
+                            << ", jit " << jit.address[c][l] << "\n";
+    if (interpreter.killed != jit.killed && shown++ < 8)
+        differences << "killed: interpreter 0x" << std::hex << interpreter.killed << ", jit 0x" << jit.killed
+                    << std::dec << "\n";
+    if (interpreter.lane_count != jit.lane_count) differences << "lane_count changed\n", ++shown;
+    if (shown == 0 && std::memcmp(&interpreter.registers, &jit.registers, sizeof(jit.registers)) == 0)
+        return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << shown << " differences:\n" << differences.str();
+}
+
+::testing::AssertionResult same_requests(const RecordingSampler& interpreter, const RecordingSampler& jit) {
+    if (interpreter.requests.size() != jit.requests.size())
+        return ::testing::AssertionFailure()
+               << interpreter.requests.size() << " texture requests from the interpreter, " << jit.requests.size()
+               << " from the jit";
+    for (size_t i = 0; i < jit.requests.size(); ++i)
+        if (!same_bits(interpreter.requests[i], jit.requests[i]))
+            return ::testing::AssertionFailure() << "texture request " << i << " differs";
+    return ::testing::AssertionSuccess();
+}
+
+// Runs `executable` on `batches` random batches in both engines.
+::testing::AssertionResult run_both(const emu::Executable& executable, const emu::jit::CompiledShader& compiled,
+                                    const emu::ConstantFile& constants, Random& random, unsigned batches) {
+    for (unsigned b = 0; b < batches; ++b) {
+        auto input = std::make_unique<emu::Batch>();
+        randomize(*input, random, static_cast<unsigned>(constants.registers.size()));
+        auto by_interpreter = std::make_unique<emu::Batch>(*input);
+        auto by_jit = std::make_unique<emu::Batch>(*input);
+        RecordingSampler interpreter_sampler, jit_sampler;
+        emu::Sampler* const interpreter_sampler_or_null = b == 1 ? nullptr : &interpreter_sampler;
+        emu::Sampler* const jit_sampler_or_null = b == 1 ? nullptr : &jit_sampler;
+        emu::execute(executable, constants, *by_interpreter, interpreter_sampler_or_null);
+        compiled.run(constants, *by_jit, jit_sampler_or_null);
+        if (auto same = same_batches(*by_interpreter, *by_jit); !same) return same << "(batch " << b << ")";
+        if (auto same = same_requests(interpreter_sampler, jit_sampler); !same) return same;
+    }
+    return ::testing::AssertionSuccess();
+}
+
+std::string listing(const emu::Executable& executable) {
+    std::string text = executable.describe();
+    return text.size() > 20000 ? text.substr(0, 20000) + "..." : text;
+}
+
+// --- the tests --------------------------------------------------------------------------------
+
+TEST(Jit, Available) {
+    if (!emu::jit::available()) GTEST_SKIP() << "built without the JIT";
+    std::string error;
+    const auto compiled = emu::jit::compile(
+        emu::Executable(isa::ShaderVersion{ShaderType::Vertex, 2, 0}, emu::Precision::Fp64, 0, {}, {}, 0), &error);
+    EXPECT_EQ(compiled, nullptr);
+    EXPECT_NE(error.find("fp64"), std::string::npos) << error;
+}
+
+struct DifferentialTotals {
+    unsigned programs = 0;
+    unsigned steps = 0;
+    double compile_seconds = 0;
+};
+
+// `groups` x `per_group` random programs of min_steps..max_steps steps; each group is compiled
+// as one module (compile_all), each program run on `batches` random batches by both engines.
+void differential(const Mode& mode, uint64_t seed, unsigned groups, unsigned per_group, unsigned min_steps,
+                  unsigned max_steps, unsigned batches, DifferentialTotals& totals) {
+    Random random(seed);
+    for (unsigned g = 0; g < groups; ++g) {
+        std::vector<emu::Executable> executables;
+        std::vector<emu::ConstantFile> constants;
+        for (unsigned p = 0; p < per_group; ++p) {
+            const unsigned constant_count = 8 + pick(random, 64);
+            ProgramGenerator generator(random, mode, constant_count);
+            executables.push_back(generator.generate(min_steps + pick(random, max_steps - min_steps + 1)));
+            constants.push_back(random_constants(random, constant_count));
+            totals.steps += static_cast<unsigned>(executables.back().steps().size());
+        }
+        std::vector<const emu::Executable*> pointers;
+        for (const auto& executable : executables) pointers.push_back(&executable);
+        std::string error;
+        const auto compiled = emu::jit::compile_all(pointers, &error);
+        ASSERT_EQ(compiled.size(), executables.size()) << error;
+        totals.programs += per_group;
+        totals.compile_seconds += compiled.front()->compile_seconds();
+        for (unsigned p = 0; p < per_group; ++p)
+            ASSERT_TRUE(run_both(executables[p], *compiled[p], constants[p], random, batches))
+                << mode_name(mode) << ", seed " << seed << ", group " << g << ", program " << p << ":\n"
+                << listing(executables[p]);
+    }
+}
+
+class JitDifferential : public ::testing::TestWithParam<Mode> {};
+
+TEST_P(JitDifferential, RandomExecutablesAreBitIdentical) {
+    if (!emu::jit::available()) GTEST_SKIP() << "built without the JIT";
+    const Mode mode = GetParam();
+    DifferentialTotals totals;
+    const uint64_t seed =
+        0x5EED0000u + static_cast<uint64_t>(mode.rounding) * 2 + (mode.transcendentals == emu::Transcendentals::Fast);
+    // Many short programs (every opcode next to every other, 25 to a module), a few long ones
+    // (long chains of results feeding each other, a0 set and read many times).
+    differential(mode, seed, 14, 25, 1, 4, 3, totals);
+    differential(mode, seed + 100, 1, 2, 60, 150, 8, totals);
+    std::printf(
+        "[ jit      ] %-9s %u random programs, %u steps: all identical; compile %.2f ms per program "
+        "(%.0f us per step)\n",
+        mode_name(mode), totals.programs, totals.steps, 1e3 * totals.compile_seconds / totals.programs,
+        1e6 * totals.compile_seconds / totals.steps);
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, JitDifferential,
+                         ::testing::Values(Mode{Rounding::Fp32, emu::Transcendentals::Exact},
+                                           Mode{Rounding::Fp32, emu::Transcendentals::Fast},
+                                           Mode{Rounding::Fp24, emu::Transcendentals::Exact},
+                                           Mode{Rounding::Fp24, emu::Transcendentals::Fast},
+                                           Mode{Rounding::Fp16, emu::Transcendentals::Exact},
+                                           Mode{Rounding::Fp16, emu::Transcendentals::Fast}),
+                         [](const ::testing::TestParamInfo<Mode>& param_info) {
+                             std::string name = mode_name(param_info.param);
+                             std::replace(name.begin(), name.end(), '/', '_');
+                             return name;
+                         });
+
+// --- the sample shaders -----------------------------------------------------------------------
+
+std::vector<std::filesystem::path> sample_shaders() {
+    std::vector<std::filesystem::path> files;
+    for (const auto& entry : std::filesystem::directory_iterator(std::string(SM2_SOURCE_DIR) + "/samples/shaders"))
+        if (entry.path().extension() == ".asm") files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+std::string read_text(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+struct SampleMode {
+    const char* name;
+    emu::PrecisionOptions precision;
+};
+
+constexpr SampleMode kSampleModes[] = {
+    {"fp32", {emu::Precision::Fp32, emu::Transcendentals::Exact, false}},
+    {"fp32/fast", {emu::Precision::Fp32, emu::Transcendentals::Fast, false}},
+    {"fp24", {emu::Precision::Fp24, emu::Transcendentals::Exact, false}},
+    {"fp24/fast", {emu::Precision::Fp24, emu::Transcendentals::Fast, false}},
+    {"fp16(pp)", {emu::Precision::Fp24, emu::Transcendentals::Exact, true}},
+};
+
+// Inputs as a draw would give them (moderate values), now and then a special one.
+void realistic_inputs(emu::Batch& batch, Random& random) {
+    std::uniform_real_distribution<float> value(-2.0f, 2.0f);
+    for (unsigned s = emu::slot::kInputFirst; s < emu::slot::kTexCoordFirst + emu::slot::kTexCoordCount; ++s)
+        for (auto& component : batch.registers[s])
+            for (float& v : component) v = chance(random, 3) ? special_float(random) : value(random);
+}
+
+TEST(Jit, SampleShadersAreBitIdentical) {
+    if (!emu::jit::available()) GTEST_SKIP() << "built without the JIT";
+    Random random(0x5A3B1E);
+    unsigned checked = 0;
+    for (const auto& file : sample_shaders()) {
+        const isa::Program program = assemble_or_fail(read_text(file));
+        for (const SampleMode& mode : kSampleModes) {
+            emu::LoweringOptions options;
+            options.precision = mode.precision;
+            const emu::Executable executable = lower_or_fail(program, {}, options);
+            std::string error;
+            const auto compiled = emu::jit::compile(executable, &error);
+            ASSERT_NE(compiled, nullptr) << error;
+            std::vector<Float4> application(256);
+            for (auto& reg : application)
+                for (float& v : reg)
+                    v = chance(random, 5) ? special_float(random)
+                                          : std::uniform_real_distribution<float>(-1, 1)(random);
+            const emu::ConstantFile constants = executable.bind_constants(application);
+            for (unsigned b = 0; b < 32; ++b) {
+                auto input = std::make_unique<emu::Batch>();
+                if (b < 16)
+                    realistic_inputs(*input, random);
+                else
+                    randomize(*input, random, static_cast<unsigned>(constants.registers.size()));
+                auto by_interpreter = std::make_unique<emu::Batch>(*input);
+                auto by_jit = std::make_unique<emu::Batch>(*input);
+                RecordingSampler interpreter_sampler, jit_sampler;
+                emu::execute(executable, constants, *by_interpreter, &interpreter_sampler);
+                compiled->run(constants, *by_jit, &jit_sampler);
+                ASSERT_TRUE(same_batches(*by_interpreter, *by_jit))
+                    << file.filename() << " " << mode.name << " batch " << b;
+                ASSERT_TRUE(same_requests(interpreter_sampler, jit_sampler)) << file.filename() << " " << mode.name;
+            }
+            std::printf("[ jit      ] %-22s %-9s %3zu steps: identical, compiled in %.2f ms\n",
+                        file.filename().string().c_str(), mode.name, executable.steps().size(),
+                        1e3 * compiled->compile_seconds());
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 0u);
+}
+
+// An exception from the Sampler reaches the caller of run(), as it does through execute().
+TEST(Jit, SamplerExceptionsPassThrough) {
+    if (!emu::jit::available()) GTEST_SKIP() << "built without the JIT";
+    class ThrowingSampler final : public emu::Sampler {
+    public:
+        void sample(const emu::TextureRequest&, std::array<emu::FloatLanes, 4>&) override {
+            throw std::runtime_error("no texture");
+        }
+    };
+    Step tex;
+    tex.opcode = Opcode::Tex;
+    tex.source_count = 1;
+    tex.sources[0].kind = OperandKind::Lanes;
+    tex.sources[0].index = static_cast<uint16_t>(emu::slot::kTexCoordFirst);
+    const emu::Executable executable(isa::ShaderVersion{ShaderType::Pixel, 2, 0}, emu::Precision::Fp32, 0, {tex}, {},
+                                     1);
+    const auto compiled = emu::jit::compile(executable);
+    ASSERT_NE(compiled, nullptr);
+    ThrowingSampler sampler;
+    emu::Batch batch;
+    EXPECT_THROW(emu::execute(executable, {}, batch, &sampler), std::runtime_error);
+    EXPECT_THROW(compiled->run({}, batch, &sampler), std::runtime_error);
+    // and the compiled code still runs afterwards
+    RecordingSampler recording;
+    compiled->run({}, batch, &recording);
+    EXPECT_EQ(recording.requests.size(), 1u);
+}
+
+// Several threads compile and run at once (one LLJIT per process).
+TEST(Jit, ThreadsCompileAndRunAtOnce) {
+    if (!emu::jit::available()) GTEST_SKIP() << "built without the JIT";
+    constexpr unsigned kThreads = 4;
+    std::vector<std::string> failures(kThreads);
+    std::vector<std::thread> threads;
+    for (unsigned t = 0; t < kThreads; ++t)
+        threads.emplace_back([t, &failures] {
+            Random random(0xC0FFEE + t);
+            for (unsigned p = 0; p < 6; ++p) {
+                ProgramGenerator generator(random, Mode{Rounding::Fp32, emu::Transcendentals::Exact}, 16);
+                const emu::Executable executable = generator.generate(12);
+                std::string error;
+                const auto compiled = emu::jit::compile(executable, &error);
+                if (!compiled) {
+                    failures[t] = error;
+                    return;
+                }
+                const emu::ConstantFile constants = random_constants(random, 16);
+                if (auto same = run_both(executable, *compiled, constants, random, 2); !same) {
+                    failures[t] = same.message();
+                    return;
+                }
+            }
+        });
+    for (auto& thread : threads) thread.join();
+    for (const auto& failure : failures) EXPECT_EQ(failure, "");
+}
+
+// The time per batch of the interpreter and of the compiled code on the longer sample shaders
+// (printed, not asserted; the best of several rounds, one thread).
+TEST(Jit, SampleShaderSpeed) {
+    if (!emu::jit::available()) GTEST_SKIP() << "built without the JIT";
+    Random random(7);
+    for (const auto& file : sample_shaders()) {
+        const isa::Program program = assemble_or_fail(read_text(file));
+        for (const SampleMode& mode : {kSampleModes[0], kSampleModes[1], kSampleModes[2]}) {
+            emu::LoweringOptions options;
+            options.precision = mode.precision;
+            const emu::Executable executable = lower_or_fail(program, {}, options);
+            if (executable.steps().size() < 10) continue;
+            const auto compiled = emu::jit::compile(executable);
+            ASSERT_NE(compiled, nullptr);
+            const emu::ConstantFile constants =
+                executable.bind_constants(std::vector<Float4>(256, Float4{0.5f, 0.25f, 0.125f, 1.0f}));
+            auto input = std::make_unique<emu::Batch>();
+            realistic_inputs(*input, random);
+            auto batch = std::make_unique<emu::Batch>(*input);
+            RecordingSampler sampler;
+            auto time = [&](auto&& run) {
+                using Clock = std::chrono::steady_clock;
+                constexpr int kRuns = 100;
+                double best = std::numeric_limits<double>::infinity();
+                for (int round = 0; round < 7; ++round) {
+                    *batch = *input;
+                    const auto start = Clock::now();
+                    for (int i = 0; i < kRuns; ++i) run();
+                    best =
+                        std::min(best, std::chrono::duration<double, std::nano>(Clock::now() - start).count() / kRuns);
+                    sampler.requests.clear();
+                }
+                return best;
+            };
+            const double interpreted = time([&] { emu::execute(executable, constants, *batch, &sampler); });
+            const double jitted = time([&] { compiled->run(constants, *batch, &sampler); });
+            std::printf(
+                "[ jit      ] %-22s %-9s %3zu steps: interpreter %7.0f ns/batch, jit %6.0f ns/batch (x%.1f), "
+                "compiled in %.1f ms\n",
+                file.filename().string().c_str(), mode.name, executable.steps().size(), interpreted, jitted,
+                interpreted / jitted, 1e3 * compiled->compile_seconds());
+        }
+    }
+}
+
+}  // namespace
+}  // namespace sm2::test
