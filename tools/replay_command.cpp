@@ -17,6 +17,7 @@
 #include "io.h"
 #include "stream_assembler.h"
 #include "stream_io.h"
+#include "sm2/emu/jit.h"
 #include "sm2/runtime/command_stream.h"
 #include "sm2/runtime/device.h"
 #include "sm2/runtime/replay.h"
@@ -48,6 +49,10 @@ std::string fixed(double v, int decimals) {
 // ---------------------------------------------------------------------------------------------
 // sm2 replay
 
+// The JIT is the default: it gives the interpreter's bytes on every sample scene and on the
+// random programs of tests/emu/jit (a build without LLVM interprets).
+constexpr const char* kDefaultEngine = "jit";
+
 // The numeric modes of a replay (docs/numerics.md): shader precision, transcendentals and the
 // sampler's filter weights. Threads default to every core (the image does not depend on them).
 struct NumericCliOptions {
@@ -56,8 +61,13 @@ struct NumericCliOptions {
     std::string transcendentals = "exact";
     std::string filter = "fixed8";
     unsigned max_slots = 0;
+    std::string engine = kDefaultEngine;
 
     void add_to(CLI::App& cmd) {
+        cmd.add_option("--engine", engine,
+                       std::string("How shaders run: interpreter (the reference) or jit (native code per shader; the "
+                                   "same bytes). Default: ") + kDefaultEngine)
+            ->check(CLI::IsMember({"interpreter", "jit"}));
         cmd.add_option("--threads", threads, "Threads for tiles (default: all cores; the image does not depend on it)")
             ->check(CLI::Range(1u, 256u));
         cmd.add_option("--precision", precision,
@@ -79,6 +89,7 @@ struct NumericCliOptions {
         if (transcendentals == "fast") d.precision.transcendentals = emu::Transcendentals::Fast;
         d.filter_precision = filter == "exact" ? runtime::FilterPrecision::Exact : runtime::FilterPrecision::Fixed8;
         d.max_instruction_slots = max_slots;
+        d.engine = engine == "jit" ? runtime::DeviceOptions::Engine::Jit : runtime::DeviceOptions::Engine::Interpreter;
     }
 };
 
@@ -216,6 +227,19 @@ int run_bench(const BenchCliOptions& o) {
                   << fixed(s.vertex_seconds * 1000.0, 3) << " ms, setup " << fixed(s.setup_seconds * 1000.0, 3)
                   << " ms, pixel " << fixed(s.pixel_seconds * 1000.0, 3) << " ms (wall time; pixel work runs on "
                   << o.numeric.threads << " thread" << (o.numeric.threads == 1 ? "" : "s") << ")\n";
+    if (o.numeric.engine == "jit") {
+        // Compilation happens in the first run only (the routines are shared by later runs).
+        const auto& first = runs.front().statistics;
+        uint64_t later = 0;
+        for (size_t i = 1; i < runs.size(); ++i) later += runs[i].statistics.routines_compiled;
+        std::cout << "engine: jit" << (emu::jit::available() ? "" : " (not in this build: interpreter)") << "; "
+                  << first.routines_compiled << " routines compiled in the first run, "
+                  << fixed(first.compile_seconds * 1000.0, 3) << " ms ("
+                  << fixed(first.routines_compiled ? first.compile_seconds * 1000.0 / static_cast<double>(first.routines_compiled) : 0.0, 3)
+                  << " ms per routine); later runs compiled " << later << "\n";
+    } else {
+        std::cout << "engine: interpreter\n";
+    }
     if (!runs.front().ok()) {
         print_diagnostics(runs.front().diagnostics);
         std::cerr << "sm2 bench: " << runs.front().refused << " of " << runs.front().calls << " calls refused\n";

@@ -8,12 +8,14 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "commands.h"
 #include "io.h"
 #include "sm2/assembler/assembler.h"
 #include "sm2/emu/engine.h"
+#include "sm2/emu/jit.h"
 #include "sm2/isa/bytecode.h"
 #include "sm2/isa/validator.h"
 #include "sm2/runtime/d3d9_names.h"
@@ -33,6 +35,7 @@ struct RunOptions {
     unsigned lanes = 1;
     bool json = false;
     bool trace = false;
+    std::string engine = "jit";
 };
 
 // An input error: printed as "sm2 run: <message>", exit status 1.
@@ -254,6 +257,16 @@ int execute_and_print(const emu::Executable& executable, const emu::ConstantFile
     json << "{\"shader\": \"" << executable.version().name() << "\", \"precision\": \"" << o.precision
          << "\", \"lanes\": [";
     static constexpr char kComponents[] = "xyzw";
+    // --engine jit: the executable as native code (float batches; --trace, fp64 and a build
+    // without the JIT interpret).
+    std::shared_ptr<const emu::jit::CompiledShader> compiled;
+    if constexpr (std::is_same_v<BatchType, emu::Batch>) {
+        if (o.engine == "jit" && !o.trace && emu::jit::available()) {
+            std::string error;
+            compiled = emu::jit::compile(executable, &error);
+            if (!compiled) throw InputError{"--engine jit: " + error};
+        }
+    }
     for (unsigned first = 0; first < lane_total; first += emu::kBatchLanes) {
         auto batch = std::make_unique<BatchType>();
         const unsigned count = std::min(emu::kBatchLanes, lane_total - first);
@@ -271,6 +284,9 @@ int execute_and_print(const emu::Executable& executable, const emu::ConstantFile
                 text << "#" << i << "  " << (i < lines.size() ? lines[i] : "") << '\n';
                 trace_step(text, step, *batch, count, first);
             });
+        } else if constexpr (std::is_same_v<BatchType, emu::Batch>) {
+            if (compiled) compiled->run(constants, *batch, &sampler);
+            else emu::execute(executable, constants, *batch, &sampler);
         } else {
             emu::execute(executable, constants, *batch, &sampler);
         }
@@ -445,6 +461,10 @@ void add_run_command(CLI::App& app, int& status) {
     cmd->add_option("--transcendentals", o->transcendentals,
                     "exact (libm, default) or fast (documented minimum precision)")
         ->check(CLI::IsMember({"exact", "fast"}));
+    cmd->add_option("--engine", o->engine,
+                    "jit (default where the build has one: native code, the same results) or interpreter (the "
+                    "reference); --trace and fp64 always interpret")
+        ->check(CLI::IsMember({"interpreter", "jit"}));
     cmd->add_flag("--json", o->json, "Print JSON instead of text");
     cmd->add_flag("--trace", o->trace,
                   "Print every executed instruction (after flow control is resolved) with the "

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "compiled_shaders.h"
 #include "device_internal.h"
 #include "worker_pool.h"
 #include "sm2/runtime/interpolation.h"
@@ -85,6 +86,7 @@ const emu::Executable* lowered_for(Device::ShaderObject& object, const emu::Stat
 // Everything the pixel part of a draw reads: built once, shared read-only by the tile threads.
 struct PixelPipeline {
     const emu::Executable* ps = nullptr;  // null: no pixel shader (oC0 = interpolated diffuse)
+    const emu::jit::CompiledShader* ps_compiled = nullptr;  // ps as native code (Engine::Jit)
     const emu::ConstantFile* ps_constants = nullptr;
     uint16_t ps_varyings = 0;             // what interpolation writes
     OutputMergerState merger{};
@@ -118,7 +120,9 @@ void shade_quads(const PixelPipeline& pipe, const PrimitiveSetup& prim, std::spa
         if (!live) return;
     }
     w.batch.killed = 0;
-    if (pipe.ps) {
+    if (pipe.ps_compiled) {
+        pipe.ps_compiled->run(*pipe.ps_constants, w.batch, &w.sampler);
+    } else if (pipe.ps) {
         emu::execute(*pipe.ps, *pipe.ps_constants, w.batch, &w.sampler);
     } else {
         // No pixel shader: D3D9's default texture stage 0 without a texture passes the diffuse
@@ -149,15 +153,16 @@ void process_tile(const PixelPipeline& pipe, std::span<const PrimitiveSetup> set
 // keeps what later stages read. Returns a fetch error (a read past a buffer), else "".
 std::string shade_vertices(const FetchPlan& plan, std::span<const VertexStream> streams,
                            std::span<const uint32_t> vertices, const emu::Executable& vs,
-                           const emu::ConstantFile& constants, bool writes_point_size,
-                           std::vector<ClipVertex>& shaded) {
+                           const emu::jit::CompiledShader* vs_compiled, const emu::ConstantFile& constants,
+                           bool writes_point_size, std::vector<ClipVertex>& shaded) {
     emu::Batch batch;
     for (size_t first = 0; first < vertices.size(); first += emu::kBatchLanes) {
         const size_t n = std::min<size_t>(emu::kBatchLanes, vertices.size() - first);
         batch.reset();
         std::string error = fetch(plan, streams, vertices.subspan(first, n), batch);
         if (!error.empty()) return error;
-        emu::execute(vs, constants, batch, nullptr);
+        if (vs_compiled) vs_compiled->run(constants, batch, nullptr);
+        else emu::execute(vs, constants, batch, nullptr);
         for (size_t l = 0; l < n; ++l) shaded[first + l] = vertex_from_batch(batch, static_cast<unsigned>(l), writes_point_size);
     }
     return {};
@@ -317,6 +322,19 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     const emu::Executable* vs = lowered_for(vs_object, vs_flow_, vs_outputs, options_.precision, stats_, error);
     if (!vs) return CallResult::fail("vertex shader: " + error);
 
+    // Engine::Jit: the shaders as native code (compiled on first use, shared by every device).
+    CompiledLookup vs_compiled, ps_compiled;
+    if (options_.engine == DeviceOptions::Engine::Jit) {
+        for (auto [executable, lookup] : {std::pair{vs, &vs_compiled}, std::pair{ps, &ps_compiled}}) {
+            if (!executable) continue;
+            *lookup = compiled_shader(*executable);
+            if (lookup->compiled_now && lookup->shader) {
+                ++stats_.routines_compiled;
+                stats_.compile_seconds += lookup->compile_seconds;
+            }
+        }
+    }
+
     stats_.pipeline_seconds += lap(clock);
 
     // Vertex stage: fetch and shade each distinct vertex once.
@@ -329,7 +347,8 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     const bool writes_point_size = (vs->components_written()[slot::kPointSize] & 1u) != 0;
     std::vector<ClipVertex> shaded(unique.vertices.size());
     const std::string fetch_error =
-        shade_vertices(*plan.plan, streams, unique.vertices, *vs, vs->bind_constants(vs_f_), writes_point_size, shaded);
+        shade_vertices(*plan.plan, streams, unique.vertices, *vs, vs_compiled.shader.get(), vs->bind_constants(vs_f_),
+                       writes_point_size, shaded);
     if (!fetch_error.empty()) return CallResult::fail("vertex fetch: " + fetch_error);
 
     stats_.vertex_seconds += lap(clock);
@@ -350,6 +369,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     // Pixel pipeline for this draw.
     PixelPipeline pipe;
     pipe.ps = ps;
+    pipe.ps_compiled = ps_compiled.shader.get();
     emu::ConstantFile ps_constants;
     if (ps) {
         ps_constants = ps->bind_constants(ps_f_);

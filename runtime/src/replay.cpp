@@ -576,6 +576,8 @@ DrawStatistics difference(const DrawStatistics& after, const DrawStatistics& bef
     d.vertex_seconds = after.vertex_seconds - before.vertex_seconds;
     d.setup_seconds = after.setup_seconds - before.setup_seconds;
     d.pixel_seconds = after.pixel_seconds - before.pixel_seconds;
+    d.routines_compiled = after.routines_compiled - before.routines_compiled;
+    d.compile_seconds = after.compile_seconds - before.compile_seconds;
     return d;
 }
 

@@ -201,6 +201,18 @@ TEST(CliRun, PrecisionModesRoundAsSpecified) {
     EXPECT_EQ(sm2("run " + pp + consts + " --precision fp16").out, "oC0 = 0.33325195 1 0.099975586 1\n");
 }
 
+TEST(CliRun, BothEnginesGiveTheHandComputedValues) {
+    const std::string shader = tmp("engines.asm");
+    write_file(shader, "ps_2_0\nmul r0, c0, c1\nrcp r1.x, c1.x\nmov r0.w, r1.x\nmov oC0, r0\n");
+    const std::string consts = " --const c0=1,3,0.1,1 --const c1=0.3333333333,0.3333333333,1,1";
+    // mul as in PrecisionModesRoundAsSpecified; rcp(0x3EAAAAAB = 0.333333343) = 2.99999991, which
+    // rounds to 3 (the float below 3 is 2.99999976)
+    for (const char* engine : {"interpreter", "jit"})
+        EXPECT_EQ(sm2("run " + shader + consts + " --engine " + engine).out, "oC0 = 0.33333334 1 0.1 3\n")
+            << engine;
+    EXPECT_EQ(sm2("run " + shader + " --engine tape").status, 2);
+}
+
 TEST(CliRun, LanesFromCsvAndTexkillAsJson) {
     const std::string shader = tmp("kill.asm"), lanes = tmp("kill.csv");
     write_file(shader, "ps_2_0\ndcl t0\ntexkill t0\nmov oC0, t0\n");
@@ -361,6 +373,17 @@ TEST(CliReplay, ClearAndPresentWriteTheClearedFrame) {
     EXPECT_EQ(q.out.find("frame_0000.png"), std::string::npos) << q.out;
     EXPECT_NE(q.out.find("1 frames"), std::string::npos) << q.out;
     EXPECT_TRUE(q.err.empty()) << q.err;  // no progress: stderr is not a terminal
+}
+
+TEST(CliReplay, BenchNamesItsEngineAndCompilesOnlyInTheFirstRun) {
+    const std::string scene = std::string(SM2_SOURCE_DIR) + "/samples/scenes/14_textured_phong.sm2cs";
+    auto jit = sm2("bench " + scene + " --repeat 2 --threads 1");
+    ASSERT_EQ(jit.status, 0) << jit.err;
+    EXPECT_NE(jit.out.find("engine: jit"), std::string::npos) << jit.out;
+    EXPECT_NE(jit.out.find("later runs compiled 0"), std::string::npos) << jit.out;
+    auto interpreted = sm2("bench " + scene + " --repeat 1 --threads 1 --engine interpreter");
+    ASSERT_EQ(interpreted.status, 0) << interpreted.err;
+    EXPECT_NE(interpreted.out.find("engine: interpreter"), std::string::npos) << interpreted.out;
 }
 
 TEST(CliReplay, RefusedCallsExit1WithFileLineAfterFinishingTheStream) {

@@ -70,6 +70,11 @@ struct DeviceOptions {
     // Only the reference paths: every texel is sampled and every pixel merged one lane at a
     // time, never by the 16-lane block paths. The bytes are the same; tests compare the two.
     bool reference_paths = false;
+    // How draws run shaders: the interpreter (the reference engine), or native code the JIT
+    // compiles once per distinct lowered shader (emu/jit.h), where this build has a JIT; the
+    // bytes are the same (tests/scenes and tests/emu/jit compare the two).
+    enum class Engine : uint8_t { Interpreter, Jit };
+    Engine engine = Engine::Interpreter;
 };
 
 struct DrawStatistics {
@@ -79,6 +84,10 @@ struct DrawStatistics {
     // fetch and shading, primitive assembly + clipping + setup + binning, and the tile work
     // (rasterization, interpolation, pixel shading, output merger; all threads together).
     double pipeline_seconds = 0, vertex_seconds = 0, setup_seconds = 0, pixel_seconds = 0;
+    // Engine::Jit: shaders compiled by this device's draws and the wall time that took (part of
+    // pipeline_seconds). A shader another Device already compiled is reused, not counted.
+    uint64_t routines_compiled = 0;
+    double compile_seconds = 0;
 };
 
 class Device {
