@@ -3,6 +3,7 @@
 
 namespace sm2::runtime {
 
+__attribute__((target_clones("arch=x86-64-v4", "default")))
 void interpolate(const PrimitiveSetup& p, std::span<const Quad> quads, uint16_t varyings,
                  emu::Batch& batch, PixelLanes& lanes) {
     constexpr unsigned N = emu::kBatchLanes;
@@ -24,20 +25,16 @@ void interpolate(const PrimitiveSetup& p, std::span<const Quad> quads, uint16_t 
     // Barycentric weights, depth and the perspective-correct weights, one loop per quantity over
     // all lanes (the compiler vectorizes them; each lane's arithmetic is the same as one at a time).
     alignas(64) std::array<float, N> c1, c2;
+    const bool perspective = p.perspective;
     for (unsigned lane = 0; lane < N; ++lane) {
         const double dx = lanes.x[lane] - p.origin_x, dy = lanes.y[lane] - p.origin_y;
         const double b1 = p.b1.c + p.b1.dx * dx + p.b1.dy * dy;
         const double b2 = p.b2.c + p.b2.dx * dx + p.b2.dy * dy;
         lanes.depth[lane] = static_cast<float>(p.z0 + b1 * p.dz1 + b2 * p.dz2 + p.depth_offset);
-        double w1 = b1, w2 = b2;
-        if (p.perspective) {
-            const double f1 = b1 * p.rhw[1], f2 = b2 * p.rhw[2];
-            const double sum = (1.0 - b1 - b2) * p.rhw[0] + f1 + f2;
-            w1 = f1 / sum;
-            w2 = f2 / sum;
-        }
-        c1[lane] = static_cast<float>(w1);
-        c2[lane] = static_cast<float>(w2);
+        const double f1 = b1 * p.rhw[1], f2 = b2 * p.rhw[2];
+        const double sum = (1.0 - b1 - b2) * p.rhw[0] + f1 + f2;
+        c1[lane] = static_cast<float>(perspective ? f1 / sum : b1);
+        c2[lane] = static_cast<float>(perspective ? f2 / sum : b2);
     }
     for (unsigned v = 0; v < kVaryingCount; ++v) {
         if (!(used >> v & 1u)) continue;
