@@ -192,6 +192,7 @@ bool distinct_pixels(const std::array<uint32_t, kLanes>& key, bool quad_order) {
 
 // Blending, write mask and store for the lanes in `write` of one fast-path target (every lane
 // inside the surface). src: the shader colour of each lane.
+__attribute__((target_clones("arch=x86-64-v4", "default")))
 void merge_unorm8(const BlendState& b, const Unorm8Texel& fmt, Surface& surface, uint32_t mask,
                   const Rgba<Lanes>& src, const std::array<size_t, kLanes>& offset, emu::LaneMask write) {
     std::byte* const bytes = surface.bytes().data();
