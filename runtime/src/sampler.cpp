@@ -479,9 +479,19 @@ Float4 lookup_any(const Context& c, float u, float v, float w, int face, const L
 // and the choice of levels stay per quad and per lane (compute_lod, choose_levels).
 
 // One lane's lookup as choose_levels() left it.
+// Not zeroed on construction (sample() writes every lane: its quads' lanes from their lookups,
+// the rest as a harmless lookup of level c.first at (0, 0)).
 struct BlockLanes {
-    alignas(64) std::array<float, emu::kBatchLanes> u{}, v{}, frac{};
-    alignas(64) std::array<int32_t, emu::kBatchLanes> l0{}, l1{}, linear{};
+    alignas(64) std::array<float, emu::kBatchLanes> u, v, frac;
+    alignas(64) std::array<int32_t, emu::kBatchLanes> l0, l1, linear;
+
+    void fill_unused(unsigned first_unused, int level) {
+        for (unsigned l = first_unused; l < emu::kBatchLanes; ++l) {
+            u[l] = v[l] = frac[l] = 0.0f;
+            l0[l] = l1[l] = level;
+            linear[l] = 0;
+        }
+    }
 };
 
 using BlockLevels = TextureSampler::BlockLevels;
@@ -720,16 +730,17 @@ void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::
     if (s.texture == nullptr || s.texture->levels() == 0) return;  // unbound or empty: (0, 0, 0, 1)
     const Context c = make_context(*s.texture, s.state, precision_);
     const auto& in = *request.coordinates;
-    BlockLevels local_levels;
+    std::optional<BlockLevels> local_levels;  // when prepare() has not run
     const BlockLevels* levels_ptr = nullptr;
-    if (prepared_[request.sampler]) levels_ptr = block_levels_[request.sampler].get();
-    else if (block_enabled_ && block_supported(c, local_levels)) levels_ptr = &local_levels;
+    if (prepared_[request.sampler]) {
+        levels_ptr = block_levels_[request.sampler].get();
+    } else if (block_enabled_) {
+        local_levels.emplace();
+        if (block_supported(c, *local_levels)) levels_ptr = &*local_levels;
+    }
     const bool block = levels_ptr != nullptr;
     BlockLanes lanes;
-    if (block) {
-        lanes.l0.fill(c.first);
-        lanes.l1.fill(c.first);
-    }
+    if (block) lanes.fill_unused(4 * quads, c.first);
 
     for (unsigned q = 0; q < quads; ++q) {
         std::array<std::array<float, 3>, 4> p;  // normalized (u, v, w) per lane
