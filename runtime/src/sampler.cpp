@@ -60,10 +60,12 @@ std::optional<uint32_t> SamplerState::get(uint32_t type) const {
 void TextureSampler::set_texture(unsigned stage, const Texture* texture) {
     stages_.at(stage).texture = texture;
     prepared_[stage] = false;
+    memo_ = {};
 }
 void TextureSampler::set_state(unsigned stage, const SamplerState& state) {
     stages_.at(stage).state = state;
     prepared_[stage] = false;
+    memo_ = {};
 }
 
 // The levels of a texture as tables the block path's lanes index by level number.
@@ -783,23 +785,36 @@ void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::
         const double lx = length(to_texels(c, dx)), ly = length(to_texels(c, dy));
         // The LOD changes nothing when both filters agree and there are no mips to choose.
         const bool lod_matters = c.mip != Mip::None || c.mag != c.min || c.anisotropic;
-        const Lod quad_lod = lod_matters ? compute_lod(c, lx, ly, 0.0f) : Lod{};
-        std::optional<LevelChoice> quad_choice;  // choose_levels(quad_lod), once per quad
-        for (unsigned i = 0; i < 4; ++i) {
-            const bool own_lod = bias[i] != 0.0f && lod_matters;
-            const Lod lod = own_lod ? compute_lod(c, lx, ly, bias[i]) : quad_lod;
-            if (block) {
+        if (block) {
+            // One level choice per quad (texldb lanes choose their own). A quad whose derivative
+            // lengths equal the previous quad's gets the previous choice: it is a function of
+            // them for a given texture and state, and quads of one screen-aligned primitive
+            // (every full-screen pass) all share their derivatives.
+            LevelChoice quad_choice;
+            if (memo_.texture == s.texture && memo_.stage == request.sampler && memo_.lx == lx && memo_.ly == ly) {
+                quad_choice = {memo_.linear ? Filter::Linear : Filter::Point, memo_.l0, memo_.l1, memo_.frac};
+            } else {
+                quad_choice = choose_levels(c, lod_matters ? compute_lod(c, lx, ly, 0.0f) : Lod{});
+                memo_ = {s.texture, request.sampler, lx, ly, quad_choice.l0, quad_choice.l1, quad_choice.frac,
+                         quad_choice.filter == Filter::Linear};
+            }
+            for (unsigned i = 0; i < 4; ++i) {
+                const bool own_lod = bias[i] != 0.0f && lod_matters;
+                const LevelChoice choice = own_lod ? choose_levels(c, compute_lod(c, lx, ly, bias[i])) : quad_choice;
                 const unsigned l = 4 * q + i;
-                if (!own_lod && !quad_choice) quad_choice = choose_levels(c, quad_lod);
-                const LevelChoice choice = own_lod ? choose_levels(c, lod) : *quad_choice;
                 lanes.u[l] = p[i][0];
                 lanes.v[l] = p[i][1];
                 lanes.l0[l] = choice.l0;
                 lanes.l1[l] = choice.l1;
                 lanes.frac[l] = choice.frac;
                 lanes.linear[l] = choice.filter == Filter::Linear ? 1 : 0;
-                continue;
             }
+            continue;
+        }
+        const Lod quad_lod = lod_matters ? compute_lod(c, lx, ly, 0.0f) : Lod{};
+        for (unsigned i = 0; i < 4; ++i) {
+            const bool own_lod = bias[i] != 0.0f && lod_matters;
+            const Lod lod = own_lod ? compute_lod(c, lx, ly, bias[i]) : quad_lod;
             const Float4 r = lookup_any(c, p[i][0], p[i][1], p[i][2], face[i], lod, lod.major_axis == 0 ? dx : dy);
             for (unsigned k = 0; k < 4; ++k) texels[k][4 * q + i] = r[k];
         }

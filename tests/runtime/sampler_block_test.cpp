@@ -60,17 +60,26 @@ SamplerState random_state(std::mt19937& rng) {
 // and everything between), some lanes replaced by special values.
 emu::TextureRequest random_request(std::mt19937& rng, std::array<emu::FloatLanes, 4>& coords) {
     std::uniform_real_distribution<float> centre(-3.0f, 3.0f), scale(-10.0f, 2.0f), unit(-1.0f, 1.0f);
+    // Half the requests give every quad the same derivatives (a screen-aligned pass: the
+    // sampler reuses the previous quad's level choice); the others differ per quad.
+    const bool shared = rng() % 2 == 0;
+    float du = 0, dv = 0, eu = 0, ev = 0;
     for (unsigned q = 0; q < emu::kBatchQuads; ++q) {
-        const float u = centre(rng), v = centre(rng);
-        const float du = std::exp2(scale(rng)) * unit(rng), dv = std::exp2(scale(rng)) * unit(rng);
-        const float eu = std::exp2(scale(rng)) * unit(rng), ev = std::exp2(scale(rng)) * unit(rng);
+        const float u = shared ? 0.3f : centre(rng), v = shared ? 0.7f : centre(rng);  // shared: equal lengths
+        if (!shared || q == 0) {
+            du = std::exp2(scale(rng)) * unit(rng);
+            dv = std::exp2(scale(rng)) * unit(rng);
+            eu = std::exp2(scale(rng)) * unit(rng);
+            ev = std::exp2(scale(rng)) * unit(rng);
+        }
         for (unsigned i = 0; i < 4; ++i) {
             const unsigned l = 4 * q + i;
             const float x = static_cast<float>(i & 1u), y = static_cast<float>(i >> 1);
-            coords[0][l] = special_or(rng, u + x * du + y * eu);
-            coords[1][l] = special_or(rng, v + x * dv + y * ev);
+            const float su = u + x * du + y * eu, sv = v + x * dv + y * ev;
+            coords[0][l] = shared ? su : special_or(rng, su);
+            coords[1][l] = shared ? sv : special_or(rng, sv);
             coords[2][l] = unit(rng);
-            coords[3][l] = rng() % 2 ? special_or(rng, unit(rng) * 4.0f) : 1.0f;
+            coords[3][l] = shared ? 1.0f : rng() % 2 ? special_or(rng, unit(rng) * 4.0f) : 1.0f;
         }
     }
     emu::TextureRequest r;

@@ -71,6 +71,7 @@ public:
     // A state changed through this reference is seen by the next prepare().
     [[nodiscard]] SamplerState& state(unsigned stage) {
         prepared_.at(stage) = false;
+        memo_ = {};
         return stages_.at(stage).state;
     }
 
@@ -125,7 +126,21 @@ private:
     // prepare()'s result per stage: whether it ran, and the tables (null: no block path).
     std::array<bool, kStages> prepared_{};
     std::array<std::shared_ptr<const BlockLevels>, kStages> block_levels_{};
-    void forget_prepared() { prepared_.fill(false); }
+    // The block path's last quad: its texel-space derivative lengths and the level choice they
+    // gave on (texture, stage); any set_* call forgets it.
+    struct QuadLevelMemo {
+        const Texture* texture = nullptr;
+        unsigned stage = 0;
+        double lx = 0, ly = 0;
+        int l0 = 0, l1 = 0;
+        float frac = 0;
+        bool linear = false;
+    };
+    QuadLevelMemo memo_{};
+    void forget_prepared() {
+        prepared_.fill(false);
+        memo_ = {};
+    }
 };
 
 }  // namespace sm2::runtime
