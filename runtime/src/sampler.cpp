@@ -706,15 +706,17 @@ Float4 TextureSampler::sample_gradient(unsigned stage, const std::array<float, 3
     return lookup_any(c, p[0], p[1], p[2], face, lod, lod.major_axis == 0 ? px : py);
 }
 
+void TextureSampler::prepare_stage(unsigned stage) {
+    const Stage& s = stages_.at(stage);
+    block_levels_[stage] = nullptr;
+    prepared_[stage] = true;
+    if (!block_enabled_ || s.texture == nullptr || s.texture->levels() == 0) return;
+    auto levels = std::make_shared<BlockLevels>();
+    if (block_supported(make_context(*s.texture, s.state, precision_), *levels)) block_levels_[stage] = std::move(levels);
+}
+
 void TextureSampler::prepare() {
-    for (unsigned stage = 0; stage < kStages; ++stage) {
-        const Stage& s = stages_[stage];
-        block_levels_[stage] = nullptr;
-        prepared_[stage] = true;
-        if (!block_enabled_ || s.texture == nullptr || s.texture->levels() == 0) continue;
-        auto levels = std::make_shared<BlockLevels>();
-        if (block_supported(make_context(*s.texture, s.state, precision_), *levels)) block_levels_[stage] = std::move(levels);
-    }
+    for (unsigned stage = 0; stage < kStages; ++stage) prepare_stage(stage);
 }
 
 bool TextureSampler::block_path_applies(unsigned stage) const {
@@ -726,20 +728,19 @@ bool TextureSampler::block_path_applies(unsigned stage) const {
 
 void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::FloatLanes, 4>& texels) {
     const unsigned quads = std::min(request.quad_count, emu::kBatchQuads);
-    for (unsigned k = 0; k < 4; ++k) texels[k].fill(k == 3 ? 1.0f : 0.0f);
+    static constexpr emu::FloatLanes kZero{}, kOne = [] {
+        emu::FloatLanes one{};
+        one.fill(1.0f);
+        return one;
+    }();
+    texels = {kZero, kZero, kZero, kOne};  // what lanes without a lookup read: (0, 0, 0, 1)
     if (request.sampler >= kStages || request.coordinates == nullptr) return;
     const Stage& s = stages_[request.sampler];
     if (s.texture == nullptr || s.texture->levels() == 0) return;  // unbound or empty: (0, 0, 0, 1)
     const Context c = make_context(*s.texture, s.state, precision_);
     const auto& in = *request.coordinates;
-    std::optional<BlockLevels> local_levels;  // when prepare() has not run
-    const BlockLevels* levels_ptr = nullptr;
-    if (prepared_[request.sampler]) {
-        levels_ptr = block_levels_[request.sampler].get();
-    } else if (block_enabled_) {
-        local_levels.emplace();
-        if (block_supported(c, *local_levels)) levels_ptr = &*local_levels;
-    }
+    if (!prepared_[request.sampler]) prepare_stage(request.sampler);
+    const BlockLevels* levels_ptr = block_levels_[request.sampler].get();
     const bool block = levels_ptr != nullptr;
     BlockLanes lanes;
     if (block) lanes.fill_unused(4 * quads, c.first);

@@ -87,10 +87,11 @@ public:
     }
     // Whether sample() takes the 16-lane path for this stage's texture and state.
     [[nodiscard]] bool block_path_applies(unsigned stage) const;
-    // Decides the block path and builds its level tables for every stage now, once, instead of
-    // in every sample() call (a draw calls it on its own copy after binding everything). Any
-    // later set_* call forgets what was prepared for the stages it touches.
+    // Decides the block path and builds its level tables for every stage now, once (a draw calls
+    // it on its own copy after binding everything; sample() prepares a stage it finds
+    // unprepared). Any later set_* call forgets what was prepared for the stages it touches.
     void prepare();
+    void prepare_stage(unsigned stage);  // prepare() for one stage (sample() does it on first use)
 
     struct BlockLevels;  // the block path's per-texture tables (sampler.cpp)
 
