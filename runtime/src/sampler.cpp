@@ -315,6 +315,13 @@ float log2_lod(double rho, bool fixed) {
     return static_cast<float>(l);
 }
 
+// Scales normalized derivatives to level-0 texels.
+std::array<float, 3> to_texels(const Context& c, const std::array<float, 3>& d) {
+    const Texture& t = *c.texture;
+    return {d[0] * static_cast<float>(t.width()), d[1] * static_cast<float>(t.height()),
+            c.volume ? d[2] * static_cast<float>(t.depth()) : 0.0f};
+}
+
 double length(const std::array<float, 3>& d) {
     const double x = d[0], y = d[1], z = d[2];
     const double len = std::sqrt(x * x + y * y + z * z);
@@ -670,6 +677,54 @@ SM2_AVX512 void block_lookup(const Context& c, const BlockLevels& levels, const 
 #endif
 #undef SM2_AVX512
 
+// sample() for a stage the block path covers: each lane's (u, v) (divided by w for texldp),
+// per quad the texel-space lengths of the coarse derivatives (TR - TL, BL - TL) and one level
+// choice (texldb lanes with a bias choose their own), then block_lookup(). A quad whose lengths
+// equal the previous quad's takes its level choice from `memo` (a function of the lengths for a
+// given texture and state; every quad of a screen-aligned pass hits).
+void block_sample(const Context& c, const BlockLevels& levels, const emu::TextureRequest& request, unsigned quads,
+                  TextureSampler::QuadLevelMemo& memo, std::array<emu::FloatLanes, 4>& texels) {
+    const auto& in = *request.coordinates;
+    const bool projected = request.variant == emu::TextureVariant::Projected;
+    const bool biased = request.variant == emu::TextureVariant::Bias;
+    BlockLanes lanes;
+    for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+        lanes.u[l] = projected ? in[0][l] / in[3][l] : in[0][l];  // IEEE: w = 0 gives +-inf or NaN
+        lanes.v[l] = projected ? in[1][l] / in[3][l] : in[1][l];
+    }
+    std::array<double, emu::kBatchQuads> lx, ly;
+    for (unsigned q = 0; q < emu::kBatchQuads; ++q) {
+        const unsigned tl = 4 * q;
+        lx[q] = length(to_texels(c, {lanes.u[tl + 1] - lanes.u[tl], lanes.v[tl + 1] - lanes.v[tl], 0.0f}));
+        ly[q] = length(to_texels(c, {lanes.u[tl + 2] - lanes.u[tl], lanes.v[tl + 2] - lanes.v[tl], 0.0f}));
+    }
+    // The LOD changes nothing when both filters agree and there are no mips to choose.
+    const bool lod_matters = c.mip != Mip::None || c.mag != c.min;
+    for (unsigned q = 0; q < quads; ++q) {
+        LevelChoice quad_choice;
+        if (memo.texture == c.texture && memo.stage == request.sampler && memo.lx == lx[q] && memo.ly == ly[q]) {
+            quad_choice = {memo.linear ? Filter::Linear : Filter::Point, memo.l0, memo.l1, memo.frac};
+        } else {
+            quad_choice = choose_levels(c, lod_matters ? compute_lod(c, lx[q], ly[q], 0.0f) : Lod{});
+            memo = {c.texture, request.sampler, lx[q], ly[q], quad_choice.l0, quad_choice.l1, quad_choice.frac,
+                    quad_choice.filter == Filter::Linear};
+        }
+        for (unsigned l = 4 * q; l < 4 * q + 4; ++l) {
+            const float bias = biased ? in[3][l] : 0.0f;
+            const bool own_lod = bias != 0.0f && lod_matters;
+            const LevelChoice choice = own_lod ? choose_levels(c, compute_lod(c, lx[q], ly[q], bias)) : quad_choice;
+            lanes.l0[l] = choice.l0;
+            lanes.l1[l] = choice.l1;
+            lanes.frac[l] = choice.frac;
+            lanes.linear[l] = choice.filter == Filter::Linear ? 1 : 0;
+        }
+    }
+    lanes.fill_unused(4 * quads, c.first);
+    std::array<emu::FloatLanes, 4> r;
+    block_lookup(c, levels, lanes, r);
+    for (unsigned k = 0; k < 4; ++k) std::copy_n(r[k].begin(), 4 * quads, texels[k].begin());
+}
+
 }  // namespace
 
 TextureSampler::LodInfo TextureSampler::level_of_detail(unsigned stage, const std::array<float, 3>& ddx_texels,
@@ -683,12 +738,6 @@ TextureSampler::LodInfo TextureSampler::level_of_detail(unsigned stage, const st
 
 namespace {
 
-// Scales normalized derivatives to level-0 texels.
-std::array<float, 3> to_texels(const Context& c, const std::array<float, 3>& d) {
-    const Texture& t = *c.texture;
-    return {d[0] * static_cast<float>(t.width()), d[1] * static_cast<float>(t.height()),
-            c.volume ? d[2] * static_cast<float>(t.depth()) : 0.0f};
-}
 
 std::array<float, 3> diff(const std::array<float, 3>& a, const std::array<float, 3>& b) {
     return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
@@ -751,9 +800,7 @@ void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::
     const auto& in = *request.coordinates;
     if (!prepared_[request.sampler]) prepare_stage(request.sampler);
     const BlockLevels* levels_ptr = block_levels_[request.sampler].get();
-    const bool block = levels_ptr != nullptr;
-    BlockLanes lanes;
-    if (block) lanes.fill_unused(4 * quads, c.first);
+    if (levels_ptr != nullptr) return block_sample(c, *levels_ptr, request, quads, memo_, texels);
 
     for (unsigned q = 0; q < quads; ++q) {
         std::array<std::array<float, 3>, 4> p;  // normalized (u, v, w) per lane
@@ -796,32 +843,6 @@ void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::
         const double lx = length(to_texels(c, dx)), ly = length(to_texels(c, dy));
         // The LOD changes nothing when both filters agree and there are no mips to choose.
         const bool lod_matters = c.mip != Mip::None || c.mag != c.min || c.anisotropic;
-        if (block) {
-            // One level choice per quad (texldb lanes choose their own). A quad whose derivative
-            // lengths equal the previous quad's gets the previous choice: it is a function of
-            // them for a given texture and state, and quads of one screen-aligned primitive
-            // (every full-screen pass) all share their derivatives.
-            LevelChoice quad_choice;
-            if (memo_.texture == s.texture && memo_.stage == request.sampler && memo_.lx == lx && memo_.ly == ly) {
-                quad_choice = {memo_.linear ? Filter::Linear : Filter::Point, memo_.l0, memo_.l1, memo_.frac};
-            } else {
-                quad_choice = choose_levels(c, lod_matters ? compute_lod(c, lx, ly, 0.0f) : Lod{});
-                memo_ = {s.texture, request.sampler, lx, ly, quad_choice.l0, quad_choice.l1, quad_choice.frac,
-                         quad_choice.filter == Filter::Linear};
-            }
-            for (unsigned i = 0; i < 4; ++i) {
-                const bool own_lod = bias[i] != 0.0f && lod_matters;
-                const LevelChoice choice = own_lod ? choose_levels(c, compute_lod(c, lx, ly, bias[i])) : quad_choice;
-                const unsigned l = 4 * q + i;
-                lanes.u[l] = p[i][0];
-                lanes.v[l] = p[i][1];
-                lanes.l0[l] = choice.l0;
-                lanes.l1[l] = choice.l1;
-                lanes.frac[l] = choice.frac;
-                lanes.linear[l] = choice.filter == Filter::Linear ? 1 : 0;
-            }
-            continue;
-        }
         const Lod quad_lod = lod_matters ? compute_lod(c, lx, ly, 0.0f) : Lod{};
         for (unsigned i = 0; i < 4; ++i) {
             const bool own_lod = bias[i] != 0.0f && lod_matters;
@@ -829,11 +850,6 @@ void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::
             const Float4 r = lookup_any(c, p[i][0], p[i][1], p[i][2], face[i], lod, lod.major_axis == 0 ? dx : dy);
             for (unsigned k = 0; k < 4; ++k) texels[k][4 * q + i] = r[k];
         }
-    }
-    if (block) {
-        std::array<emu::FloatLanes, 4> r;
-        block_lookup(c, *levels_ptr, lanes, r);
-        for (unsigned k = 0; k < 4; ++k) std::copy_n(r[k].begin(), 4 * quads, texels[k].begin());
     }
 }
 

@@ -94,6 +94,16 @@ public:
     void prepare_stage(unsigned stage);  // prepare() for one stage (sample() does it on first use)
 
     struct BlockLevels;  // the block path's per-texture tables (sampler.cpp)
+    // The block path's last quad: its texel-space derivative lengths and the level choice they
+    // gave on (texture, stage); any set_* call forgets it.
+    struct QuadLevelMemo {
+        const Texture* texture = nullptr;
+        unsigned stage = 0;
+        double lx = 0, ly = 0;
+        int l0 = 0, l1 = 0;
+        float frac = 0;
+        bool linear = false;
+    };
 
     [[nodiscard]] FilterPrecision precision() const { return precision_; }
 
@@ -127,16 +137,6 @@ private:
     // prepare()'s result per stage: whether it ran, and the tables (null: no block path).
     std::array<bool, kStages> prepared_{};
     std::array<std::shared_ptr<const BlockLevels>, kStages> block_levels_{};
-    // The block path's last quad: its texel-space derivative lengths and the level choice they
-    // gave on (texture, stage); any set_* call forgets it.
-    struct QuadLevelMemo {
-        const Texture* texture = nullptr;
-        unsigned stage = 0;
-        double lx = 0, ly = 0;
-        int l0 = 0, l1 = 0;
-        float frac = 0;
-        bool linear = false;
-    };
     QuadLevelMemo memo_{};
     void forget_prepared() {
         prepared_.fill(false);
