@@ -503,16 +503,6 @@ struct CompiledShader::Code {
     }
 };
 
-CompiledShader::CompiledShader(std::shared_ptr<Code> code, uintptr_t entry, unsigned constant_count, size_t step_count,
-                               double compile_seconds)
-    : code_(std::move(code)),
-      entry_(entry),
-      constant_count_(constant_count),
-      step_count_(step_count),
-      compile_seconds_(compile_seconds) {}
-
-CompiledShader::~CompiledShader() = default;
-
 void CompiledShader::run(const ConstantFile& constants, Batch& batch, Sampler* sampler) const {
     if (constants.registers.size() < constant_count_)
         throw std::invalid_argument("the constant file has " + std::to_string(constants.registers.size()) +

@@ -7,16 +7,6 @@ namespace sm2::emu::jit {
 
 struct CompiledShader::Code {};
 
-CompiledShader::CompiledShader(std::shared_ptr<Code> code, uintptr_t entry, unsigned constant_count, size_t step_count,
-                               double compile_seconds)
-    : code_(std::move(code)),
-      entry_(entry),
-      constant_count_(constant_count),
-      step_count_(step_count),
-      compile_seconds_(compile_seconds) {}
-
-CompiledShader::~CompiledShader() = default;
-
 void CompiledShader::run(const ConstantFile&, Batch&, Sampler*) const {
     throw std::logic_error("sm2 was built without the JIT (SM2_JIT=OFF)");
 }

@@ -18,6 +18,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sm2/emu/batch.h"
@@ -35,8 +36,10 @@ public:
     struct Code;  // the machine code of the shaders compiled together (opaque), freed with the last
     // (made by compile() and compile_all())
     CompiledShader(std::shared_ptr<Code> code, uintptr_t entry, unsigned constant_count, size_t step_count,
-                   double compile_seconds);
-    ~CompiledShader();
+                   double compile_seconds)
+        : code_(std::move(code)), entry_(entry), constant_count_(constant_count), step_count_(step_count),
+          compile_seconds_(compile_seconds) {}
+    ~CompiledShader() = default;
     CompiledShader(const CompiledShader&) = delete;
     CompiledShader& operator=(const CompiledShader&) = delete;
 
