@@ -431,7 +431,6 @@ Float4 blend_levels(const Float4& a, const Float4& b, float frac) {
 template <Format F>
 Float4 lookup(const Context& c, float u, float v, float w, int face, const Lod& lod, const std::array<float, 3>& axis) {
     const LevelChoice choice = choose_levels(c, lod);
-    if (lod.magnify) return filter_level<F>(c, level_view(c, choice.l0, face), choice.filter, u, v, w);
     const Filter f = choice.filter;
     const float frac = choice.frac;
     const Level a = level_view(c, choice.l0, face);
@@ -497,8 +496,7 @@ Float4 lookup_any(const Context& c, float u, float v, float w, int face, const L
 // per-lane path; tests/runtime/sampler_block_test.cpp holds the two equal. The level of detail
 // and the choice of levels stay per quad and per lane (compute_lod, choose_levels).
 
-// One lane's lookup as choose_levels() left it.
-// Not zeroed on construction (sample() writes every lane: its quads' lanes from their lookups,
+// Each lane's lookup as choose_levels() left it. Not zeroed on construction (sample() writes every lane: its quads' lanes from their lookups,
 // the rest as a harmless lookup of level c.first at (0, 0)).
 struct BlockLanes {
     alignas(64) std::array<float, emu::kBatchLanes> u, v, frac;
@@ -738,7 +736,6 @@ TextureSampler::LodInfo TextureSampler::level_of_detail(unsigned stage, const st
 
 namespace {
 
-
 std::array<float, 3> diff(const std::array<float, 3>& a, const std::array<float, 3>& b) {
     return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
 }
@@ -765,25 +762,24 @@ Float4 TextureSampler::sample_gradient(unsigned stage, const std::array<float, 3
     return lookup_any(c, p[0], p[1], p[2], face, lod, lod.major_axis == 0 ? px : py);
 }
 
-void TextureSampler::prepare_stage(unsigned stage) {
+std::shared_ptr<const TextureSampler::BlockLevels> TextureSampler::block_levels_for(unsigned stage) const {
     const Stage& s = stages_.at(stage);
-    block_levels_[stage] = nullptr;
-    prepared_[stage] = true;
-    if (!block_enabled_ || s.texture == nullptr || s.texture->levels() == 0) return;
+    if (!block_enabled_ || s.texture == nullptr || s.texture->levels() == 0) return nullptr;
     auto levels = std::make_shared<BlockLevels>();
-    if (block_supported(make_context(*s.texture, s.state, precision_), *levels)) block_levels_[stage] = std::move(levels);
+    if (!block_supported(make_context(*s.texture, s.state, precision_), *levels)) return nullptr;
+    return levels;
+}
+
+void TextureSampler::prepare_stage(unsigned stage) {
+    block_levels_.at(stage) = block_levels_for(stage);
+    prepared_[stage] = true;
 }
 
 void TextureSampler::prepare() {
     for (unsigned stage = 0; stage < kStages; ++stage) prepare_stage(stage);
 }
 
-bool TextureSampler::block_path_applies(unsigned stage) const {
-    const Stage& s = stages_.at(stage);
-    if (!block_enabled_ || s.texture == nullptr || s.texture->levels() == 0) return false;
-    BlockLevels levels;
-    return block_supported(make_context(*s.texture, s.state, precision_), levels);
-}
+bool TextureSampler::block_path_applies(unsigned stage) const { return block_levels_for(stage) != nullptr; }
 
 void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::FloatLanes, 4>& texels) {
     const unsigned quads = std::min(request.quad_count, emu::kBatchQuads);
@@ -845,8 +841,7 @@ void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::
         const bool lod_matters = c.mip != Mip::None || c.mag != c.min || c.anisotropic;
         const Lod quad_lod = lod_matters ? compute_lod(c, lx, ly, 0.0f) : Lod{};
         for (unsigned i = 0; i < 4; ++i) {
-            const bool own_lod = bias[i] != 0.0f && lod_matters;
-            const Lod lod = own_lod ? compute_lod(c, lx, ly, bias[i]) : quad_lod;
+            const Lod lod = bias[i] == 0.0f || !lod_matters ? quad_lod : compute_lod(c, lx, ly, bias[i]);
             const Float4 r = lookup_any(c, p[i][0], p[i][1], p[i][2], face[i], lod, lod.major_axis == 0 ? dx : dy);
             for (unsigned k = 0; k < 4; ++k) texels[k][4 * q + i] = r[k];
         }

@@ -138,6 +138,8 @@ private:
     std::array<bool, kStages> prepared_{};
     std::array<std::shared_ptr<const BlockLevels>, kStages> block_levels_{};
     QuadLevelMemo memo_{};
+    // The stage's block-path tables, or null where the block path does not apply.
+    [[nodiscard]] std::shared_ptr<const BlockLevels> block_levels_for(unsigned stage) const;
     void forget_prepared() {
         prepared_.fill(false);
         memo_ = {};
