@@ -2,10 +2,12 @@
 #pragma once
 
 #include <deque>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "sm2/emu/engine.h"
+#include "sm2/emu/jit.h"
 #include "sm2/runtime/device.h"
 
 namespace sm2::runtime {
@@ -19,6 +21,10 @@ struct Device::ShaderObject {
         emu::StaticFlowConstants flow;
         uint32_t outputs_read = 0;
         emu::Executable executable;
+        // Engine::Jit: the executable as native code, looked up (or compiled) by the first draw
+        // that runs it; null after that lookup when it cannot be compiled.
+        bool compiled_looked_up = false;
+        std::shared_ptr<const emu::jit::CompiledShader> compiled;
     };
     std::deque<Lowered> lowered;
 };

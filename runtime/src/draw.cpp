@@ -63,12 +63,12 @@ uint32_t vs_outputs_for(uint16_t varyings) {
 }
 
 // The pipeline cache: one lowered executable per (flow key, outputs read) of a shader.
-const emu::Executable* lowered_for(Device::ShaderObject& object, const emu::StaticFlowConstants& application,
+Device::ShaderObject::Lowered* lowered_for(Device::ShaderObject& object, const emu::StaticFlowConstants& application,
                                    uint32_t outputs_read, const emu::PrecisionOptions& precision,
                                    DrawStatistics& stats, std::string& error) {
     const emu::StaticFlowConstants key = object.shader->flow_key(application);
-    for (const auto& entry : object.lowered)
-        if (entry.flow == key && entry.outputs_read == outputs_read) return &entry.executable;
+    for (auto& entry : object.lowered)
+        if (entry.flow == key && entry.outputs_read == outputs_read) return &entry;
     emu::LoweringOptions options;
     options.precision = precision;
     options.outputs_read = outputs_read;
@@ -78,9 +78,24 @@ const emu::Executable* lowered_for(Device::ShaderObject& object, const emu::Stat
         error = lowered.error;
         return nullptr;
     }
-    object.lowered.push_back({key, outputs_read, std::move(*lowered.executable)});
+    object.lowered.push_back({key, outputs_read, std::move(*lowered.executable), false, nullptr});
     ++stats.pipelines_built;
-    return &object.lowered.back().executable;
+    return &object.lowered.back();
+}
+
+// Engine::Jit: the entry's executable as native code, from the process-wide cache on the
+// entry's first draw (and counted in `stats` when that compiled it); null: interpret.
+const emu::jit::CompiledShader* compiled_for(Device::ShaderObject::Lowered& entry, DrawStatistics& stats) {
+    if (!entry.compiled_looked_up) {
+        const CompiledLookup lookup = compiled_shader(entry.executable);
+        entry.compiled = lookup.shader;
+        entry.compiled_looked_up = true;
+        if (lookup.compiled_now && lookup.shader) {
+            ++stats.routines_compiled;
+            stats.compile_seconds += lookup.compile_seconds;
+        }
+    }
+    return entry.compiled.get();
 }
 
 // Everything the pixel part of a draw reads: built once, shared read-only by the tile threads.
@@ -308,32 +323,26 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     for (unsigned i = 0; i < kMaxRenderTargets; ++i)
         if (targets.color[i] && (merger.write_mask[i] & 0xF)) ps_outputs |= output_bit(slot::kRenderTargetFirst + i);
     ps_outputs |= output_bit(slot::kDepth);
-    const emu::Executable* ps = nullptr;
+    ShaderObject::Lowered* ps_entry = nullptr;
     if (ps_object) {
-        ps = lowered_for(*ps_object, ps_flow_, ps_outputs, options_.precision, stats_, error);
-        if (!ps) return CallResult::fail("pixel shader: " + error);
+        ps_entry = lowered_for(*ps_object, ps_flow_, ps_outputs, options_.precision, stats_, error);
+        if (!ps_entry) return CallResult::fail("pixel shader: " + error);
     }
+    const emu::Executable* ps = ps_entry ? &ps_entry->executable : nullptr;
     uint16_t varyings = ps ? varyings_read_by(*ps) : static_cast<uint16_t>(1u << kVaryingColor0);
     if (merger.fog_enable && merger.fog_table_mode == FogMode::None) varyings |= 1u << kVaryingFog;
     const bool points = type == PrimitiveType::PointList ||
                         (render_state_.fill_mode == FillMode::Point && type >= PrimitiveType::TriangleList);
     uint32_t vs_outputs = vs_outputs_for(varyings);
     if (points) vs_outputs |= output_bit(slot::kPointSize);
-    const emu::Executable* vs = lowered_for(vs_object, vs_flow_, vs_outputs, options_.precision, stats_, error);
-    if (!vs) return CallResult::fail("vertex shader: " + error);
+    ShaderObject::Lowered* vs_entry = lowered_for(vs_object, vs_flow_, vs_outputs, options_.precision, stats_, error);
+    if (!vs_entry) return CallResult::fail("vertex shader: " + error);
+    const emu::Executable* vs = &vs_entry->executable;
 
     // Engine::Jit: the shaders as native code (compiled on first use, shared by every device).
-    CompiledLookup vs_compiled, ps_compiled;
-    if (options_.engine == DeviceOptions::Engine::Jit) {
-        for (auto [executable, lookup] : {std::pair{vs, &vs_compiled}, std::pair{ps, &ps_compiled}}) {
-            if (!executable) continue;
-            *lookup = compiled_shader(*executable);
-            if (lookup->compiled_now && lookup->shader) {
-                ++stats_.routines_compiled;
-                stats_.compile_seconds += lookup->compile_seconds;
-            }
-        }
-    }
+    const bool jit = options_.engine == DeviceOptions::Engine::Jit;
+    const emu::jit::CompiledShader* vs_compiled = jit ? compiled_for(*vs_entry, stats_) : nullptr;
+    const emu::jit::CompiledShader* ps_compiled = jit && ps_entry ? compiled_for(*ps_entry, stats_) : nullptr;
 
     stats_.pipeline_seconds += lap(clock);
 
@@ -347,7 +356,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     const bool writes_point_size = (vs->components_written()[slot::kPointSize] & 1u) != 0;
     std::vector<ClipVertex> shaded(unique.vertices.size());
     const std::string fetch_error =
-        shade_vertices(*plan.plan, streams, unique.vertices, *vs, vs_compiled.shader.get(), vs->bind_constants(vs_f_),
+        shade_vertices(*plan.plan, streams, unique.vertices, *vs, vs_compiled, vs->bind_constants(vs_f_),
                        writes_point_size, shaded);
     if (!fetch_error.empty()) return CallResult::fail("vertex fetch: " + fetch_error);
 
@@ -369,7 +378,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     // Pixel pipeline for this draw.
     PixelPipeline pipe;
     pipe.ps = ps;
-    pipe.ps_compiled = ps_compiled.shader.get();
+    pipe.ps_compiled = ps_compiled;
     emu::ConstantFile ps_constants;
     if (ps) {
         ps_constants = ps->bind_constants(ps_f_);

@@ -12,6 +12,7 @@ void interpolate(const PrimitiveSetup& p, std::span<const Quad> quads, uint16_t 
     lanes.coverage = 0;
     lanes.clockwise = p.clockwise;
     batch.lane_count = static_cast<unsigned>(4 * n);
+    if (n == 0) return;  // no lane to fill (the loops below repeat the last quad's position)
     const uint16_t used = static_cast<uint16_t>(varyings & p.varying_mask);
     // Pixel positions and coverage; lanes past the last quad repeat its position (their values
     // are computed and never used).
