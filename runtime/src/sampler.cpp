@@ -68,13 +68,6 @@ void TextureSampler::set_state(unsigned stage, const SamplerState& state) {
     memo_ = {};
 }
 
-// The levels of a texture as tables the block path's lanes index by level number.
-struct TextureSampler::BlockLevels {
-    static constexpr unsigned kMax = 16;
-    alignas(64) std::array<int32_t, kMax> width{}, height{}, row{};
-    alignas(64) std::array<const std::byte*, kMax> base{};
-};
-
 namespace {
 
 // Texel-space coordinates are clamped to +-2^30 before any float -> integer conversion
@@ -168,6 +161,25 @@ Context make_context(const Texture& texture, const SamplerState& s, FilterPrecis
     c.bias = std::clamp(no_nan(s.mip_lod_bias), -kLambdaLimit, kLambdaLimit);
     return c;
 }
+
+}  // namespace
+
+// The levels of a texture as tables the block path's lanes index by level number, and the
+// stage's context (built once per prepare(), not per lookup).
+struct TextureSampler::BlockLevels {
+    static constexpr unsigned kMax = 16;
+    alignas(64) std::array<int32_t, kMax> width{}, height{}, row{};
+    alignas(64) std::array<const std::byte*, kMax> base{};
+    // Where every level lies within 2^31 bytes of `anchor`: each level's start as a 32-bit
+    // offset from it, so a gather takes 16 32-bit offsets instead of two halves of 64-bit
+    // addresses (offsets32 false: the 64-bit gathers).
+    alignas(64) std::array<int32_t, kMax> offset{};
+    const std::byte* anchor = nullptr;
+    bool offsets32 = false;
+    Context context;
+};
+
+namespace {
 
 Level level_view(const Context& c, int level, int face) {
     const Surface& s = c.texture->surface(static_cast<uint32_t>(level), static_cast<uint32_t>(face));
@@ -555,6 +567,19 @@ bool block_supported(const Context& c, BlockLevels& levels) {
         levels.row[l] = levels.row[count - 1];
         levels.base[l] = levels.base[count - 1];
     }
+    // 32-bit offsets when every byte of every level lies within [anchor, anchor + 2^31).
+    uintptr_t low = UINTPTR_MAX, high = 0;
+    for (unsigned l = 0; l < count; ++l) {
+        const Surface& s = c.texture->surface(l);
+        const auto start = reinterpret_cast<uintptr_t>(s.bytes().data());
+        low = std::min(low, start);
+        high = std::max(high, start + s.bytes().size());
+    }
+    levels.offsets32 = high - low < (uintptr_t{1} << 31);
+    levels.anchor = reinterpret_cast<const std::byte*>(low);
+    for (unsigned l = 0; l < BlockLevels::kMax; ++l)
+        levels.offset[l] = levels.offsets32 ? static_cast<int32_t>(reinterpret_cast<uintptr_t>(levels.base[l]) - low) : 0;
+    levels.context = c;
     return block_address_supported(c.address[0], all_pow2) && block_address_supported(c.address[1], all_pow2);
 }
 
@@ -604,7 +629,13 @@ SM2_AVX512 inline BlockTaps block_taps(const Context& c, __m512 coord, __m512i n
     return {block_address(mode, i, n), block_address(mode, _mm512_add_epi32(i, _mm512_set1_epi32(1)), n), a};
 }
 
-// The texels at (x, y) of each lane's level, as 32-bit words.
+// The texels at (x, y) of each lane's level, as 32-bit words: from 32-bit offsets to the level
+// starts (BlockLevels::offsets32) or from 64-bit level addresses.
+SM2_AVX512 inline __m512i block_gather32(__m512i x, __m512i y, __m512i row, __m512i start, const std::byte* anchor) {
+    const __m512i offset = _mm512_add_epi32(_mm512_add_epi32(_mm512_mullo_epi32(y, row), _mm512_slli_epi32(x, 2)), start);
+    return _mm512_i32gather_epi32(offset, anchor, 1);
+}
+
 SM2_AVX512 inline __m512i block_gather(__m512i x, __m512i y, __m512i row, __m512i base_lo, __m512i base_hi) {
     const __m512i offset = _mm512_add_epi32(_mm512_mullo_epi32(y, row), _mm512_slli_epi32(x, 2));
     const __m512i lo = _mm512_add_epi64(base_lo, _mm512_cvtepi32_epi64(_mm512_castsi512_si256(offset)));
@@ -614,11 +645,21 @@ SM2_AVX512 inline __m512i block_gather(__m512i x, __m512i y, __m512i row, __m512
     return _mm512_inserti64x4(_mm512_castsi256_si512(texels_lo), texels_hi, 1);
 }
 
-// The UNORM8 decode of format_layout.h: byte / 255 (a missing alpha reads 1).
+// The UNORM8 decode of format_layout.h: byte / 255 (a missing alpha reads 1). The quotient
+// without a division: q = b * (1/255) corrected once by its residual, b - 255 q (exact in an
+// FMA), which gives the correctly rounded b / 255 for each of the 256 bytes
+// (sampler_block_test checks all of them against the division).
+SM2_AVX512 inline __m512 unorm8_quotient(__m512 b) {
+    const __m512 reciprocal = _mm512_set1_ps(1.0f / 255.0f);
+    const __m512 q = _mm512_mul_ps(b, reciprocal);
+    const __m512 residual = _mm512_fnmadd_ps(q, _mm512_set1_ps(255.0f), b);
+    return _mm512_fmadd_ps(residual, reciprocal, q);
+}
+
 SM2_AVX512 inline __m512 block_channel(__m512i texels, int shift) {
     if (shift < 0) return _mm512_set1_ps(1.0f);
     const __m512i byte = _mm512_and_si512(_mm512_srli_epi32(texels, static_cast<unsigned>(shift)), _mm512_set1_epi32(0xFF));
-    return _mm512_div_ps(_mm512_cvtepi32_ps(byte), _mm512_set1_ps(255.0f));
+    return unorm8_quotient(_mm512_cvtepi32_ps(byte));
 }
 
 // filter_level() on each lane's level `level` (POINT or LINEAR per lane).
@@ -635,10 +676,19 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
         _mm512_permutex2var_epi64(bases_lo, _mm512_cvtepi32_epi64(_mm512_extracti64x4_epi64(level, 1)), bases_hi);
     const BlockTaps tx = block_taps(c, _mm512_load_ps(in.u.data()), w, c.address[0], linear);
     const BlockTaps ty = block_taps(c, _mm512_load_ps(in.v.data()), h, c.address[1], linear);
-    const __m512i t00 = block_gather(tx.i0, ty.i0, row, base_lo, base_hi);
-    const __m512i t10 = block_gather(tx.i1, ty.i0, row, base_lo, base_hi);
-    const __m512i t01 = block_gather(tx.i0, ty.i1, row, base_lo, base_hi);
-    const __m512i t11 = block_gather(tx.i1, ty.i1, row, base_lo, base_hi);
+    __m512i t00, t10, t01, t11;
+    if (levels.offsets32) {
+        const __m512i start = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.offset.data()));
+        t00 = block_gather32(tx.i0, ty.i0, row, start, levels.anchor);
+        t10 = block_gather32(tx.i1, ty.i0, row, start, levels.anchor);
+        t01 = block_gather32(tx.i0, ty.i1, row, start, levels.anchor);
+        t11 = block_gather32(tx.i1, ty.i1, row, start, levels.anchor);
+    } else {
+        t00 = block_gather(tx.i0, ty.i0, row, base_lo, base_hi);
+        t10 = block_gather(tx.i1, ty.i0, row, base_lo, base_hi);
+        t01 = block_gather(tx.i0, ty.i1, row, base_lo, base_hi);
+        t11 = block_gather(tx.i1, ty.i1, row, base_lo, base_hi);
+    }
     const __m512 one = _mm512_set1_ps(1.0f);
     const __m512 bx = _mm512_sub_ps(one, tx.a), by = _mm512_sub_ps(one, ty.a);
     const __m512 w00 = _mm512_mul_ps(bx, by), w10 = _mm512_mul_ps(tx.a, by);
@@ -792,11 +842,11 @@ void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::
     if (request.sampler >= kStages || request.coordinates == nullptr) return;
     const Stage& s = stages_[request.sampler];
     if (s.texture == nullptr || s.texture->levels() == 0) return;  // unbound or empty: (0, 0, 0, 1)
-    const Context c = make_context(*s.texture, s.state, precision_);
-    const auto& in = *request.coordinates;
     if (!prepared_[request.sampler]) prepare_stage(request.sampler);
     const BlockLevels* levels_ptr = block_levels_[request.sampler].get();
-    if (levels_ptr != nullptr) return block_sample(c, *levels_ptr, request, quads, memo_, texels);
+    if (levels_ptr != nullptr) return block_sample(levels_ptr->context, *levels_ptr, request, quads, memo_, texels);
+    const Context c = make_context(*s.texture, s.state, precision_);
+    const auto& in = *request.coordinates;
 
     for (unsigned q = 0; q < quads; ++q) {
         std::array<std::array<float, 3>, 4> p;  // normalized (u, v, w) per lane

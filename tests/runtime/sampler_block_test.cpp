@@ -19,7 +19,7 @@ namespace {
 Texture random_texture(std::mt19937& rng, Format format, uint32_t w, uint32_t h, uint32_t levels) {
     Texture t = Texture::create_2d(format, w, h, levels);
     for (uint32_t l = 0; l < t.levels(); ++l) {
-        auto bytes = t.surface(l).bytes();
+        auto& bytes = t.surface(l).bytes();
         for (auto& b : bytes) b = static_cast<std::byte>(rng() & 0xFFu);
     }
     return t;
@@ -162,6 +162,45 @@ TEST(SamplerBlockPath, BilinearCentreOfA2x2Texture) {
         EXPECT_FLOAT_EQ(texels[1][l], 0.25f);   // green: one texel of 255
         EXPECT_FLOAT_EQ(texels[2][l], 0.0f);
         EXPECT_FLOAT_EQ(texels[3][l], 0.75f);   // alpha: three of 255
+    }
+}
+
+// The block path decodes UNORM8 without a division (a reciprocal product corrected by its
+// residual): every one of the 256 bytes must read exactly byte / 255 as IEEE division gives it.
+// A 256x1 A8R8G8B8 texture whose texel x holds byte x in all four channels, POINT, at the
+// centres of 16 texels per request.
+TEST(SamplerBlockPath, EveryUnorm8ByteDecodesAsTheDivision) {
+    Texture t = Texture::create_2d(Format::A8R8G8B8, 256, 1, 1);
+    auto& bytes = t.surface(0).bytes();
+    for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<std::byte>(i / 4);
+    TextureSampler s;
+    s.set_texture(0, &t);
+    SamplerState st;
+    st.address_u = st.address_v = TextureAddress::Clamp;
+    st.mag_filter = st.min_filter = TextureFilter::Point;
+    st.mip_filter = TextureFilter::None;
+    s.set_state(0, st);
+    s.prepare();
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq")) {
+        ASSERT_TRUE(s.block_path_applies(0));
+    }
+    for (unsigned first = 0; first < 256; first += emu::kBatchLanes) {
+        std::array<emu::FloatLanes, 4> coords{};
+        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+            coords[0][l] = (static_cast<float>(first + l) + 0.5f) / 256.0f;  // exact in binary
+            coords[1][l] = 0.5f;
+        }
+        emu::TextureRequest r;
+        r.coordinates = &coords;
+        std::array<emu::FloatLanes, 4> texels;
+        s.sample(r, texels);
+        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+            volatile float byte = static_cast<float>(first + l);
+            const float expected = byte / 255.0f;
+            for (unsigned c = 0; c < 4; ++c)
+                ASSERT_EQ(std::bit_cast<uint32_t>(texels[c][l]), std::bit_cast<uint32_t>(expected))
+                    << "byte " << first + l << " channel " << c;
+        }
     }
 }
 
