@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <random>
 
 #include "emu/engine_test_support.h"
 
@@ -143,6 +144,59 @@ TEST(FastTranscendentals, PowSpecialValuesFollowThePolicy) {
     EXPECT_EQ(fast[4], 1.0f);
     EXPECT_NEAR(fast[5], 8.0f, 8.0f * 0x1p-15f);
     EXPECT_NEAR(fast[6], 2.0f, 2.0f * 0x1p-15f);
+}
+
+// Exact mode's pow is the engine's own double-precision evaluation (numerics.h pow_float), not
+// the C library's powf: it must be correctly rounded. Against long double powl (64-bit
+// mantissa) on 400 000 random bases in (0, 16) and exponents in (-40, 40), every result in the
+// normal float range lies within 0.5 ulp (plus the reference's own 2^-40 ulp).
+TEST(ExactTranscendentals, PowIsCorrectlyRoundedOnASample) {
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> base(0.0f, 16.0f), exponent(-40.0f, 40.0f);
+    std::vector<float> bases(400000), exponents(400000);
+    for (size_t k = 0; k < bases.size(); ++k) {
+        bases[k] = base(rng);
+        exponents[k] = exponent(rng);
+    }
+    const auto exact = evaluate(Opcode::Pow, bases, exponents, emu::Transcendentals::Exact);
+    double worst = 0;
+    size_t checked = 0;
+    for (size_t k = 0; k < bases.size(); ++k) {
+        const long double reference = powl(static_cast<long double>(bases[k]), static_cast<long double>(exponents[k]));
+        if (!(reference >= 0x1p-126L && reference < 0x1p127L)) continue;
+        const long double ulp = ldexpl(1.0L, ilogbl(reference) - 23);
+        worst = std::max(worst, static_cast<double>(fabsl(static_cast<long double>(exact[k]) - reference) / ulp));
+        ++checked;
+    }
+    std::printf("exact pow: %zu results in the normal range, max error %.6f ulp\n", checked, worst);
+    EXPECT_GT(checked, 200000u);
+    EXPECT_LE(worst, 0.5 + 0x1p-40);
+}
+
+// IEEE pow's special cases on |base| in exact mode (docs/numerics.md rows "pow").
+TEST(ExactTranscendentals, PowSpecialValues) {
+    const float denormal = 0x1p-149f;
+    const auto r = evaluate(Opcode::Pow,
+                            {0, -0.0f, 0, kInf, kInf, 1, kNaN, kNaN, 2, 0.5f, 0.5f, 2, 2, 2, denormal, -3, 2},
+                            {0, -3, 2, 2, -2, kNaN, 0, 1, kInf, kInf, -kInf, -kInf, 128, -149, 1, 2, -150},
+                            emu::Transcendentals::Exact);
+    EXPECT_EQ(r[0], 1.0f);            // 0^0
+    EXPECT_EQ(r[1], kInf);            // |-0|^-3
+    EXPECT_TRUE(same_bits(r[2], 0.0f));
+    EXPECT_EQ(r[3], kInf);            // inf^2
+    EXPECT_TRUE(same_bits(r[4], 0.0f));  // inf^-2
+    EXPECT_EQ(r[5], 1.0f);            // 1^NaN
+    EXPECT_EQ(r[6], 1.0f);            // NaN^0
+    EXPECT_TRUE(std::isnan(r[7]));
+    EXPECT_EQ(r[8], kInf);            // 2^inf
+    EXPECT_TRUE(same_bits(r[9], 0.0f));  // 0.5^inf
+    EXPECT_EQ(r[10], kInf);           // 0.5^-inf
+    EXPECT_TRUE(same_bits(r[11], 0.0f));  // 2^-inf
+    EXPECT_EQ(r[12], kInf);           // 2^128 overflows
+    EXPECT_EQ(r[13], denormal);       // 2^-149: the smallest denormal, exact
+    EXPECT_EQ(r[14], denormal);       // denormal^1
+    EXPECT_EQ(r[15], 9.0f);           // |-3|^2
+    EXPECT_TRUE(same_bits(r[16], 0.0f));  // 2^-150: half the smallest denormal rounds to even, 0
 }
 
 TEST(FastTranscendentals, SinCosWithinTheDocumentedAbsoluteError) {
