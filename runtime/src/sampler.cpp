@@ -508,19 +508,12 @@ Float4 lookup_any(const Context& c, float u, float v, float w, int face, const L
 // per-lane path; tests/runtime/sampler_block_test.cpp holds the two equal. The level of detail
 // and the choice of levels stay per quad and per lane (compute_lod, choose_levels).
 
-// Each lane's lookup as choose_levels() left it. Not zeroed on construction (sample() writes every lane: its quads' lanes from their lookups,
-// the rest as a harmless lookup of level c.first at (0, 0)).
+// Each lane's lookup as choose_levels() left it. Not zeroed on construction (block_sample()
+// writes every lane: its quads' lanes from their lookups, the rest as a harmless lookup of level
+// c.first at (0, 0)).
 struct BlockLanes {
     alignas(64) std::array<float, emu::kBatchLanes> u, v, frac;
     alignas(64) std::array<int32_t, emu::kBatchLanes> l0, l1, linear;
-
-    void fill_unused(unsigned first_unused, int level) {
-        for (unsigned l = first_unused; l < emu::kBatchLanes; ++l) {
-            u[l] = v[l] = frac[l] = 0.0f;
-            l0[l] = l1[l] = level;
-            linear[l] = 0;
-        }
-    }
 };
 
 using BlockLevels = TextureSampler::BlockLevels;
@@ -629,12 +622,21 @@ SM2_AVX512 inline BlockTaps block_taps(const Context& c, __m512 coord, __m512i n
     return {block_address(mode, i, n), block_address(mode, _mm512_add_epi32(i, _mm512_set1_epi32(1)), n), a};
 }
 
-// The texels at (x, y) of each lane's level, as 32-bit words: from 32-bit offsets to the level
-// starts (BlockLevels::offsets32) or from 64-bit level addresses.
-SM2_AVX512 inline __m512i block_gather32(__m512i x, __m512i y, __m512i row, __m512i start, const std::byte* anchor) {
-    const __m512i offset = _mm512_add_epi32(_mm512_add_epi32(_mm512_mullo_epi32(y, row), _mm512_slli_epi32(x, 2)), start);
-    return _mm512_i32gather_epi32(offset, anchor, 1);
+// The texel at each lane's byte offset and the one after it, as two 32-bit words per lane, for
+// the lanes of `pairs` (others read 0): 8-byte loads, which stay inside the level's row because
+// a pair lane's second texel is in the level.
+SM2_AVX512 inline void block_gather_pairs(__m512i offset, __mmask16 pairs, const std::byte* anchor, __m512i& first,
+                                          __m512i& second) {
+    const __m512i zero = _mm512_setzero_si512();
+    const __m512i lo = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(pairs), _mm512_castsi512_si256(offset), anchor, 1);
+    const __m512i hi = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(pairs >> 8),
+                                                   _mm512_extracti64x4_epi64(offset, 1), anchor, 1);
+    const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    const __m512i odd = _mm512_add_epi32(even, _mm512_set1_epi32(1));
+    first = _mm512_permutex2var_epi32(lo, even, hi);
+    second = _mm512_permutex2var_epi32(lo, odd, hi);
 }
+
 
 SM2_AVX512 inline __m512i block_gather(__m512i x, __m512i y, __m512i row, __m512i base_lo, __m512i base_hi) {
     const __m512i offset = _mm512_add_epi32(_mm512_mullo_epi32(y, row), _mm512_slli_epi32(x, 2));
@@ -678,11 +680,22 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
     const BlockTaps ty = block_taps(c, _mm512_load_ps(in.v.data()), h, c.address[1], linear);
     __m512i t00, t10, t01, t11;
     if (levels.offsets32) {
+        // Where i1 = i0 + 1 (every lane but those on a level's right edge) one 64-bit load reads
+        // both texels of a row: half the gathered elements. Edge lanes gather each texel alone.
         const __m512i start = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.offset.data()));
-        t00 = block_gather32(tx.i0, ty.i0, row, start, levels.anchor);
-        t10 = block_gather32(tx.i1, ty.i0, row, start, levels.anchor);
-        t01 = block_gather32(tx.i0, ty.i1, row, start, levels.anchor);
-        t11 = block_gather32(tx.i1, ty.i1, row, start, levels.anchor);
+        const __m512i row0 = _mm512_add_epi32(_mm512_mullo_epi32(ty.i0, row), start);
+        const __m512i row1 = _mm512_add_epi32(_mm512_mullo_epi32(ty.i1, row), start);
+        const __m512i x0 = _mm512_slli_epi32(tx.i0, 2), x1 = _mm512_slli_epi32(tx.i1, 2);
+        const __mmask16 adjacent = _mm512_cmpeq_epi32_mask(tx.i1, _mm512_add_epi32(tx.i0, _mm512_set1_epi32(1)));
+        block_gather_pairs(_mm512_add_epi32(row0, x0), adjacent, levels.anchor, t00, t10);
+        block_gather_pairs(_mm512_add_epi32(row1, x0), adjacent, levels.anchor, t01, t11);
+        const auto edge = static_cast<__mmask16>(~adjacent);
+        if (edge) {
+            t00 = _mm512_mask_i32gather_epi32(t00, edge, _mm512_add_epi32(row0, x0), levels.anchor, 1);
+            t10 = _mm512_mask_i32gather_epi32(t10, edge, _mm512_add_epi32(row0, x1), levels.anchor, 1);
+            t01 = _mm512_mask_i32gather_epi32(t01, edge, _mm512_add_epi32(row1, x0), levels.anchor, 1);
+            t11 = _mm512_mask_i32gather_epi32(t11, edge, _mm512_add_epi32(row1, x1), levels.anchor, 1);
+        }
     } else {
         t00 = block_gather(tx.i0, ty.i0, row, base_lo, base_hi);
         t10 = block_gather(tx.i1, ty.i0, row, base_lo, base_hi);
@@ -702,7 +715,7 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
 }
 
 // The lookups of `in` (every lane valid: lanes without a pixel read level c.first at 0, 0).
-SM2_AVX512 void block_lookup(const Context& c, const BlockLevels& levels, const BlockLanes& in,
+SM2_AVX512 void block_lookup(const Context& c, const BlockLevels& levels, const BlockLanes& in, __mmask16 used,
                              std::array<emu::FloatLanes, 4>& texels) {
     const Rgba8Order order = *rgba8_order(c.format);
     const __mmask16 linear = _mm512_cmpneq_epi32_mask(_mm512_load_si512(in.linear.data()), _mm512_setzero_si512());
@@ -717,61 +730,113 @@ SM2_AVX512 void block_lookup(const Context& c, const BlockLevels& levels, const 
         for (unsigned k = 0; k < 4; ++k)
             r[k] = _mm512_mask_mov_ps(r[k], second, _mm512_add_ps(_mm512_mul_ps(keep, r[k]), _mm512_mul_ps(frac, b[k])));
     }
-    for (unsigned k = 0; k < 4; ++k) _mm512_storeu_ps(texels[k].data(), r[k]);
+    // Lanes without a pixel read (0, 0, 0, 1), as the per-lane path leaves them.
+    for (unsigned k = 0; k < 4; ++k)
+        _mm512_storeu_ps(texels[k].data(), _mm512_mask_mov_ps(_mm512_set1_ps(k == 3 ? 1.0f : 0.0f), used, r[k]));
 }
 
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
-#undef SM2_AVX512
+// block_sample()'s per-lane set-up in registers: each lane's (u, v), divided by w for texldp,
+// and the texel-space lengths of the 4 quads' coarse derivatives (TR - TL, BL - TL) as
+// to_texels() and length() compute them (float differences and products, then the sum of
+// squares and its root in double; NaN -> 0). lengths[q] is quad q's x length, lengths[4 + q] its y.
+SM2_AVX512 void block_coordinates(const Context& c, const emu::TextureRequest& request, BlockLanes& lanes,
+                                  std::array<double, 8>& lengths) {
+    const auto& in = *request.coordinates;
+    __m512 u = _mm512_loadu_ps(in[0].data()), v = _mm512_loadu_ps(in[1].data());
+    if (request.variant == emu::TextureVariant::Projected) {
+        const __m512 w = _mm512_loadu_ps(in[3].data());  // IEEE: w = 0 gives +-inf or NaN
+        u = _mm512_div_ps(u, w);
+        v = _mm512_div_ps(v, w);
+    }
+    _mm512_store_ps(lanes.u.data(), u);
+    _mm512_store_ps(lanes.v.data(), v);
+    const __m512i to = _mm512_setr_epi32(1, 5, 9, 13, 2, 6, 10, 14, 0, 0, 0, 0, 0, 0, 0, 0);
+    const __m512i from = _mm512_setr_epi32(0, 4, 8, 12, 0, 4, 8, 12, 0, 0, 0, 0, 0, 0, 0, 0);
+    const __m512 du = _mm512_sub_ps(_mm512_permutexvar_ps(to, u), _mm512_permutexvar_ps(from, u));
+    const __m512 dv = _mm512_sub_ps(_mm512_permutexvar_ps(to, v), _mm512_permutexvar_ps(from, v));
+    const __m512 tu = _mm512_mul_ps(du, _mm512_set1_ps(static_cast<float>(c.texture->width())));
+    const __m512 tv = _mm512_mul_ps(dv, _mm512_set1_ps(static_cast<float>(c.texture->height())));
+    const __m512d x = _mm512_cvtps_pd(_mm512_castps512_ps256(tu));
+    const __m512d y = _mm512_cvtps_pd(_mm512_castps512_ps256(tv));
+    const __m512d zero = _mm512_setzero_pd();
+    const __m512d sum = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(x, x), _mm512_mul_pd(y, y)), _mm512_mul_pd(zero, zero));
+    const __m512d len = _mm512_sqrt_pd(sum);
+    _mm512_storeu_pd(lengths.data(), _mm512_maskz_mov_pd(_mm512_cmp_pd_mask(len, len, _CMP_ORD_Q), len));
+}
+
+SM2_AVX512 inline __m512i block_spread(__m512i quad_of_lane, const std::array<int32_t, 4>& quad_values) {
+    const __m128i values = _mm_loadu_si128(reinterpret_cast<const __m128i*>(quad_values.data()));
+    return _mm512_permutexvar_epi32(quad_of_lane, _mm512_castsi128_si512(values));
+}
+
+// Each lane's level choice from its quad's: lane l takes quad_value[l / 4]; lanes of `used`
+// only, the others level `first`, POINT, at (0, 0).
+SM2_AVX512 void block_spread_choices(const std::array<int32_t, 4>& l0, const std::array<int32_t, 4>& l1,
+                                     const std::array<float, 4>& frac, const std::array<int32_t, 4>& linear,
+                                     __mmask16 used, int first, BlockLanes& lanes) {
+    const __m512i quad_of_lane = _mm512_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3);
+    const __m512i level = _mm512_set1_epi32(first);
+    _mm512_store_si512(lanes.l0.data(), _mm512_mask_mov_epi32(level, used, block_spread(quad_of_lane, l0)));
+    _mm512_store_si512(lanes.l1.data(), _mm512_mask_mov_epi32(level, used, block_spread(quad_of_lane, l1)));
+    _mm512_store_si512(lanes.linear.data(), _mm512_maskz_mov_epi32(used, block_spread(quad_of_lane, linear)));
+    _mm512_store_ps(lanes.frac.data(), _mm512_maskz_mov_ps(used, _mm512_permutexvar_ps(quad_of_lane, _mm512_castps128_ps512(_mm_loadu_ps(frac.data())))));
+    const __m512 zero = _mm512_setzero_ps();
+    _mm512_store_ps(lanes.u.data(), _mm512_mask_mov_ps(zero, used, _mm512_load_ps(lanes.u.data())));
+    _mm512_store_ps(lanes.v.data(), _mm512_mask_mov_ps(zero, used, _mm512_load_ps(lanes.v.data())));
+}
+
 
 // sample() for a stage the block path covers: each lane's (u, v) (divided by w for texldp),
 // per quad the texel-space lengths of the coarse derivatives (TR - TL, BL - TL) and one level
 // choice (texldb lanes with a bias choose their own), then block_lookup(). A quad whose lengths
 // equal the previous quad's takes its level choice from `memo` (a function of the lengths for a
 // given texture and state; every quad of a screen-aligned pass hits).
-void block_sample(const Context& c, const BlockLevels& levels, const emu::TextureRequest& request, unsigned quads,
+SM2_AVX512 void block_sample(const Context& c, const BlockLevels& levels, const emu::TextureRequest& request, unsigned quads,
                   TextureSampler::QuadLevelMemo& memo, std::array<emu::FloatLanes, 4>& texels) {
+    static_assert(emu::kBatchQuads == 4, "block_coordinates() holds 4 quads' lengths");
     const auto& in = *request.coordinates;
-    const bool projected = request.variant == emu::TextureVariant::Projected;
     const bool biased = request.variant == emu::TextureVariant::Bias;
     BlockLanes lanes;
-    for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-        lanes.u[l] = projected ? in[0][l] / in[3][l] : in[0][l];  // IEEE: w = 0 gives +-inf or NaN
-        lanes.v[l] = projected ? in[1][l] / in[3][l] : in[1][l];
-    }
-    std::array<double, emu::kBatchQuads> lx, ly;
-    for (unsigned q = 0; q < emu::kBatchQuads; ++q) {
-        const unsigned tl = 4 * q;
-        lx[q] = length(to_texels(c, {lanes.u[tl + 1] - lanes.u[tl], lanes.v[tl + 1] - lanes.v[tl], 0.0f}));
-        ly[q] = length(to_texels(c, {lanes.u[tl + 2] - lanes.u[tl], lanes.v[tl + 2] - lanes.v[tl], 0.0f}));
-    }
+    std::array<double, 8> lengths;
+    block_coordinates(c, request, lanes, lengths);
     // The LOD changes nothing when both filters agree and there are no mips to choose.
     const bool lod_matters = c.mip != Mip::None || c.mag != c.min;
+    std::array<int32_t, 4> l0{}, l1{}, linear{};
+    std::array<float, 4> frac{};
     for (unsigned q = 0; q < quads; ++q) {
-        LevelChoice quad_choice;
-        if (memo.texture == c.texture && memo.stage == request.sampler && memo.lx == lx[q] && memo.ly == ly[q]) {
-            quad_choice = {memo.linear ? Filter::Linear : Filter::Point, memo.l0, memo.l1, memo.frac};
-        } else {
-            quad_choice = choose_levels(c, lod_matters ? compute_lod(c, lx[q], ly[q], 0.0f) : Lod{});
-            memo = {c.texture, request.sampler, lx[q], ly[q], quad_choice.l0, quad_choice.l1, quad_choice.frac,
-                    quad_choice.filter == Filter::Linear};
+        const double lx = lengths[q], ly = lengths[4 + q];
+        if (!(memo.texture == c.texture && memo.stage == request.sampler && memo.lx == lx && memo.ly == ly)) {
+            const LevelChoice choice = choose_levels(c, lod_matters ? compute_lod(c, lx, ly, 0.0f) : Lod{});
+            memo = {c.texture, request.sampler, lx, ly, choice.l0, choice.l1, choice.frac,
+                    choice.filter == Filter::Linear};
         }
-        for (unsigned l = 4 * q; l < 4 * q + 4; ++l) {
-            const float bias = biased ? in[3][l] : 0.0f;
-            const bool own_lod = bias != 0.0f && lod_matters;
-            const LevelChoice choice = own_lod ? choose_levels(c, compute_lod(c, lx[q], ly[q], bias)) : quad_choice;
+        l0[q] = memo.l0;
+        l1[q] = memo.l1;
+        frac[q] = memo.frac;
+        linear[q] = memo.linear ? 1 : 0;
+    }
+    const auto used = static_cast<__mmask16>((1u << (4 * quads)) - 1u);
+    block_spread_choices(l0, l1, frac, linear, used, c.first, lanes);
+    if (biased && lod_matters) {
+        // texldb lanes with a bias choose their own levels.
+        for (unsigned l = 0; l < 4 * quads; ++l) {
+            const float bias = in[3][l];
+            if (bias == 0.0f) continue;
+            const unsigned q = l / 4;
+            const LevelChoice choice = choose_levels(c, compute_lod(c, lengths[q], lengths[4 + q], bias));
             lanes.l0[l] = choice.l0;
             lanes.l1[l] = choice.l1;
             lanes.frac[l] = choice.frac;
             lanes.linear[l] = choice.filter == Filter::Linear ? 1 : 0;
         }
     }
-    lanes.fill_unused(4 * quads, c.first);
-    std::array<emu::FloatLanes, 4> r;
-    block_lookup(c, levels, lanes, r);
-    for (unsigned k = 0; k < 4; ++k) std::copy_n(r[k].begin(), 4 * quads, texels[k].begin());
+    block_lookup(c, levels, lanes, used, texels);
 }
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+#undef SM2_AVX512
 
 }  // namespace
 
@@ -838,13 +903,15 @@ void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::
         one.fill(1.0f);
         return one;
     }();
+    if (request.sampler < kStages && request.coordinates != nullptr) {
+        if (!prepared_[request.sampler]) prepare_stage(request.sampler);
+        const BlockLevels* levels_ptr = block_levels_[request.sampler].get();
+        if (levels_ptr != nullptr) return block_sample(levels_ptr->context, *levels_ptr, request, quads, memo_, texels);
+    }
     texels = {kZero, kZero, kZero, kOne};  // what lanes without a lookup read: (0, 0, 0, 1)
     if (request.sampler >= kStages || request.coordinates == nullptr) return;
     const Stage& s = stages_[request.sampler];
     if (s.texture == nullptr || s.texture->levels() == 0) return;  // unbound or empty: (0, 0, 0, 1)
-    if (!prepared_[request.sampler]) prepare_stage(request.sampler);
-    const BlockLevels* levels_ptr = block_levels_[request.sampler].get();
-    if (levels_ptr != nullptr) return block_sample(levels_ptr->context, *levels_ptr, request, quads, memo_, texels);
     const Context c = make_context(*s.texture, s.state, precision_);
     const auto& in = *request.coordinates;
 
