@@ -13,6 +13,7 @@
 
 #include "dxt.h"
 #include "format_layout.h"
+#include "unorm8_avx512.h"
 
 namespace sm2::runtime {
 
@@ -576,7 +577,6 @@ bool block_supported(const Context& c, BlockLevels& levels) {
     return block_address_supported(c.address[0], all_pow2) && block_address_supported(c.address[1], all_pow2);
 }
 
-#define SM2_AVX512 __attribute__((target("avx512f,avx512dq")))
 // GCC 12's AVX-512 headers trip -Wuninitialized on their own _mm512_undefined_*() self-init.
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
@@ -647,21 +647,10 @@ SM2_AVX512 inline __m512i block_gather(__m512i x, __m512i y, __m512i row, __m512
     return _mm512_inserti64x4(_mm512_castsi256_si512(texels_lo), texels_hi, 1);
 }
 
-// The UNORM8 decode of format_layout.h: byte / 255 (a missing alpha reads 1). The quotient
-// without a division: q = b * (1/255) corrected once by its residual, b - 255 q (exact in an
-// FMA), which gives the correctly rounded b / 255 for each of the 256 bytes
-// (sampler_block_test checks all of them against the division).
-SM2_AVX512 inline __m512 unorm8_quotient(__m512 b) {
-    const __m512 reciprocal = _mm512_set1_ps(1.0f / 255.0f);
-    const __m512 q = _mm512_mul_ps(b, reciprocal);
-    const __m512 residual = _mm512_fnmadd_ps(q, _mm512_set1_ps(255.0f), b);
-    return _mm512_fmadd_ps(residual, reciprocal, q);
-}
-
+// The UNORM8 decode of format_layout.h (a missing alpha reads 1).
 SM2_AVX512 inline __m512 block_channel(__m512i texels, int shift) {
     if (shift < 0) return _mm512_set1_ps(1.0f);
-    const __m512i byte = _mm512_and_si512(_mm512_srli_epi32(texels, static_cast<unsigned>(shift)), _mm512_set1_epi32(0xFF));
-    return unorm8_quotient(_mm512_cvtepi32_ps(byte));
+    return unorm8::decode_at(texels, static_cast<unsigned>(shift));
 }
 
 // filter_level() on each lane's level `level` (POINT or LINEAR per lane).

@@ -1,0 +1,37 @@
+// The UNORM8 conversions of format_layout.h for 16 lanes in AVX-512 registers, shared by the
+// sampler's and the output merger's block paths (callers check the CPU before calling).
+#pragma once
+
+#include <immintrin.h>
+
+#define SM2_AVX512 __attribute__((target("avx512f,avx512dq")))
+
+namespace sm2::runtime::unorm8 {
+
+// Decode: byte / 255 in float. The quotient without a division: q = b * (1/255) corrected once
+// by its residual b - 255 q (exact in an FMA), which gives the correctly rounded b / 255 for
+// each of the 256 bytes (sampler_block_test checks all of them against the division).
+SM2_AVX512 inline __m512 decode(__m512 byte) {
+    const __m512 reciprocal = _mm512_set1_ps(1.0f / 255.0f);
+    const __m512 q = _mm512_mul_ps(byte, reciprocal);
+    const __m512 residual = _mm512_fnmadd_ps(q, _mm512_set1_ps(255.0f), byte);
+    return _mm512_fmadd_ps(residual, reciprocal, q);
+}
+
+// The byte at bit `shift` of each 32-bit texel, decoded.
+SM2_AVX512 inline __m512 decode_at(__m512i texels, unsigned shift) {
+    const __m512i byte = _mm512_and_si512(_mm512_srli_epi32(texels, shift), _mm512_set1_epi32(0xFF));
+    return decode(_mm512_cvtepi32_ps(byte));
+}
+
+// Encode of a value already in [0, 1]: floor(double(v) * 255 + 0.5), exact in double (24 + 8
+// significant bits) and truncated (the sum is positive), as format_layout.h's encode.
+SM2_AVX512 inline __m512i encode(__m512 unit) {
+    const __m512d scale = _mm512_set1_pd(255.0), half = _mm512_set1_pd(0.5);
+    const __m512d lo = _mm512_add_pd(_mm512_mul_pd(_mm512_cvtps_pd(_mm512_castps512_ps256(unit)), scale), half);
+    const __m512d hi =
+        _mm512_add_pd(_mm512_mul_pd(_mm512_cvtps_pd(_mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(unit), 1))), scale), half);
+    return _mm512_inserti64x4(_mm512_castsi256_si512(_mm512_cvttpd_epi32(lo)), _mm512_cvttpd_epi32(hi), 1);
+}
+
+}  // namespace sm2::runtime::unorm8
