@@ -237,7 +237,8 @@ void blend_batch(const BlendState& b, const Rgba<Lanes>& src, const Rgba<Lanes>&
 }
 
 bool cpu_has_avx512() {
-    static const bool has = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+    static const bool has = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+                            __builtin_cpu_supports("avx512vl");
     return has;
 }
 

@@ -61,12 +61,10 @@ std::optional<uint32_t> SamplerState::get(uint32_t type) const {
 void TextureSampler::set_texture(unsigned stage, const Texture* texture) {
     stages_.at(stage).texture = texture;
     prepared_[stage] = false;
-    memo_ = {};
 }
 void TextureSampler::set_state(unsigned stage, const SamplerState& state) {
     stages_.at(stage).state = state;
     prepared_[stage] = false;
-    memo_ = {};
 }
 
 namespace {
@@ -319,9 +317,35 @@ struct Lod {
     int major_axis = 0;   // 0: the x derivative is the major axis, 1: y
 };
 
+// log2 of a positive double for the LOD, written out (not the C library's) so that the block
+// path's 16-lane copy (block_lod_log2) computes the same bits with the same IEEE operations: the
+// exponent plus 2 atanh((m - 1) / (m + 1)) / ln 2 for the mantissa m in [sqrt(1/2), sqrt(2)),
+// series to s^21 (truncation below 2^-60); a few ulp of double from the exact log2.
+constexpr double kSqrt2 = 1.4142135623730951;
+constexpr double kInvLn2 = 1.4426950408889634;
+constexpr std::array<double, 11> kAtanhSeries = {2.0 / 21, 2.0 / 19, 2.0 / 17, 2.0 / 15, 2.0 / 13, 2.0 / 11,
+                                                 2.0 / 9,  2.0 / 7,  2.0 / 5,  2.0 / 3,  2.0};
+
+double lod_log2(double x) {
+    const bool tiny = x < 0x1p-1022;  // denormal: scaled into the normal range first
+    const double scaled = tiny ? x * 0x1p52 : x;
+    const auto bits = std::bit_cast<uint64_t>(scaled);
+    double e = static_cast<double>(static_cast<int64_t>(bits >> 52) - 1023) - (tiny ? 52.0 : 0.0);
+    double m = std::bit_cast<double>((bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull);
+    const bool high = m > kSqrt2;
+    m = high ? m * 0.5 : m;
+    e = high ? e + 1.0 : e;
+    const double s = (m - 1.0) / (m + 1.0);
+    const double s2 = s * s;
+    double p = kAtanhSeries[0];
+    for (size_t k = 1; k < kAtanhSeries.size(); ++k) p = p * s2 + kAtanhSeries[k];
+    const double r = e + (p * s) * kInvLn2;
+    return x == INFINITY ? INFINITY : r;
+}
+
 float log2_lod(double rho, bool fixed) {
     // log2 in double, one rounding to float; 8 fractional bits in fixed mode.
-    double l = rho > 0 ? std::log2(rho) : -static_cast<double>(kLambdaLimit);
+    double l = rho > 0 ? lod_log2(rho) : -static_cast<double>(kLambdaLimit);
     if (!(l > -kLambdaLimit)) l = -kLambdaLimit;  // also catches NaN
     if (l > kLambdaLimit) l = kLambdaLimit;
     if (fixed) l = std::floor(l * kFixedScale) / kFixedScale;
@@ -541,7 +565,8 @@ bool block_address_supported(TextureAddress mode, bool all_pow2) {
 bool block_supported(const Context& c, BlockLevels& levels) {
     if (c.cube || c.volume || c.dxt || c.srgb || c.anisotropic || !rgba8_order(c.format)) return false;
     if (c.texture->levels() > BlockLevels::kMax || c.bpp != 4) return false;
-    static const bool cpu_has_avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+    static const bool cpu_has_avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+                                      __builtin_cpu_supports("avx512vl");
     if (!cpu_has_avx512) return false;
     bool all_pow2 = true;
     const unsigned count = c.texture->levels();
@@ -775,13 +800,98 @@ SM2_AVX512 void block_spread_choices(const std::array<int32_t, 4>& l0, const std
 }
 
 
+// lod_log2() for 8 lanes, the same operations in the same order.
+SM2_AVX512 inline __m512d block_lod_log2(__m512d x) {
+    const __mmask8 tiny = _mm512_cmp_pd_mask(x, _mm512_set1_pd(0x1p-1022), _CMP_LT_OQ);
+    const __m512d scaled = _mm512_mask_mul_pd(x, tiny, x, _mm512_set1_pd(0x1p52));
+    const __m512i bits = _mm512_castpd_si512(scaled);
+    const __m512i biased = _mm512_sub_epi64(_mm512_srli_epi64(bits, 52), _mm512_set1_epi64(1023));
+    __m512d e = _mm512_cvtepi64_pd(biased);
+    e = _mm512_mask_sub_pd(e, tiny, e, _mm512_set1_pd(52.0));
+    __m512d m = _mm512_castsi512_pd(_mm512_or_si512(_mm512_and_si512(bits, _mm512_set1_epi64(0x000FFFFFFFFFFFFFll)),
+                                                    _mm512_set1_epi64(0x3FF0000000000000ll)));
+    const __mmask8 high = _mm512_cmp_pd_mask(m, _mm512_set1_pd(kSqrt2), _CMP_GT_OQ);
+    m = _mm512_mask_mul_pd(m, high, m, _mm512_set1_pd(0.5));
+    e = _mm512_mask_add_pd(e, high, e, _mm512_set1_pd(1.0));
+    const __m512d one = _mm512_set1_pd(1.0);
+    const __m512d s = _mm512_div_pd(_mm512_sub_pd(m, one), _mm512_add_pd(m, one));
+    const __m512d s2 = _mm512_mul_pd(s, s);
+    __m512d p = _mm512_set1_pd(kAtanhSeries[0]);
+    for (size_t k = 1; k < kAtanhSeries.size(); ++k) p = _mm512_add_pd(_mm512_mul_pd(p, s2), _mm512_set1_pd(kAtanhSeries[k]));
+    const __m512d r = _mm512_add_pd(e, _mm512_mul_pd(_mm512_mul_pd(p, s), _mm512_set1_pd(kInvLn2)));
+    return _mm512_mask_mov_pd(r, _mm512_cmp_pd_mask(x, _mm512_set1_pd(INFINITY), _CMP_EQ_OQ), _mm512_set1_pd(INFINITY));
+}
+
+// std::clamp(v, lo, hi) for 8 lanes: v < lo ? lo : hi < v ? hi : v.
+SM2_AVX512 inline __m256 block_clamp(__m256 v, float lo, float hi) {
+    const __m256 low = _mm256_set1_ps(lo), high = _mm256_set1_ps(hi);
+    const __mmask8 below = _mm256_cmp_ps_mask(v, low, _CMP_LT_OQ), above = _mm256_cmp_ps_mask(high, v, _CMP_LT_OQ);
+    return _mm256_mask_mov_ps(_mm256_mask_mov_ps(v, above, high), below, low);
+}
+
+// compute_lod() (no texldb bias, no anisotropy: what the block path covers) then
+// choose_levels() for the 4 quads of a batch, with the same IEEE operations: lengths[q] and
+// lengths[4 + q] are quad q's x and y derivative lengths.
+SM2_AVX512 void block_choose_levels(const Context& c, bool lod_matters, const std::array<double, 8>& lengths,
+                                    std::array<int32_t, 4>& l0, std::array<int32_t, 4>& l1, std::array<float, 4>& frac,
+                                    std::array<int32_t, 4>& linear) {
+    const __m512d lx = _mm512_castpd256_pd512(_mm256_loadu_pd(lengths.data()));
+    const __m512d ly = _mm512_castpd256_pd512(_mm256_loadu_pd(lengths.data() + 4));
+    // log2_lod(std::max(lx, ly), fixed)
+    const __m512d major = _mm512_mask_mov_pd(lx, _mm512_cmp_pd_mask(lx, ly, _CMP_LT_OQ), ly);
+    const __m512d limit = _mm512_set1_pd(kLambdaLimit), neg_limit = _mm512_set1_pd(-kLambdaLimit);
+    __m512d l = _mm512_mask_mov_pd(neg_limit, _mm512_cmp_pd_mask(major, _mm512_setzero_pd(), _CMP_GT_OQ),
+                                   block_lod_log2(major));
+    l = _mm512_mask_mov_pd(l, _mm512_cmp_pd_mask(l, neg_limit, _CMP_NGT_UQ), neg_limit);
+    l = _mm512_mask_mov_pd(l, _mm512_cmp_pd_mask(l, limit, _CMP_GT_OQ), limit);
+    if (c.fixed)
+        l = _mm512_div_pd(_mm512_roundscale_pd(_mm512_mul_pd(l, _mm512_set1_pd(kFixedScale)), _MM_FROUND_TO_NEG_INF),
+                          _mm512_set1_pd(kFixedScale));
+    // lambda = clamp(log2_lod + total_bias, -limit, limit) in float; std::clamp(v, lo, hi) is
+    // v < lo ? lo : hi < v ? hi : v.
+    const float total_bias = c.bias + std::clamp(no_nan(0.0f), -kLambdaLimit, kLambdaLimit);
+    __m256 lambda = _mm256_add_ps(_mm512_cvtpd_ps(l), _mm256_set1_ps(total_bias));
+    lambda = block_clamp(lambda, -kLambdaLimit, kLambdaLimit);
+    const __mmask8 magnify = lod_matters ? static_cast<__mmask8>(~_mm256_cmp_ps_mask(lambda, _mm256_setzero_ps(), _CMP_GT_OQ))
+                                         : static_cast<__mmask8>(0xFF);
+    // choose_levels()
+    __m256i level0 = _mm256_set1_epi32(c.first), level1 = level0;
+    __m256 fraction = _mm256_setzero_ps();
+    if (c.mip != Mip::None) {
+        const __m256 d = block_clamp(lambda, static_cast<float>(c.first), static_cast<float>(c.last));
+        const __m256i last = _mm256_set1_epi32(c.last);
+        if (c.mip == Mip::Point) {
+            const __m256 nearest = _mm256_roundscale_ps(_mm256_add_ps(d, _mm256_set1_ps(0.5f)), _MM_FROUND_TO_NEG_INF);
+            level0 = level1 = _mm256_min_epi32(last, _mm256_cvttps_epi32(nearest));
+        } else {
+            level0 = _mm256_cvttps_epi32(_mm256_roundscale_ps(d, _MM_FROUND_TO_NEG_INF));
+            level1 = _mm256_min_epi32(_mm256_add_epi32(level0, _mm256_set1_epi32(1)), last);
+            fraction = _mm256_sub_ps(d, _mm256_cvtepi32_ps(level0));
+            if (c.fixed)
+                fraction = _mm256_div_ps(_mm256_roundscale_ps(_mm256_mul_ps(fraction, _mm256_set1_ps(kFixedScale)),
+                                                              _MM_FROUND_TO_NEG_INF),
+                                         _mm256_set1_ps(kFixedScale));
+        }
+    }
+    const __m256i first = _mm256_set1_epi32(c.first);
+    level0 = _mm256_mask_mov_epi32(level0, magnify, first);
+    level1 = _mm256_mask_mov_epi32(level1, magnify, first);
+    fraction = _mm256_mask_mov_ps(fraction, magnify, _mm256_setzero_ps());
+    const __m256i minify_linear = _mm256_set1_epi32(c.min == Filter::Linear ? 1 : 0);
+    const __m256i magnify_linear = _mm256_set1_epi32(c.mag == Filter::Linear ? 1 : 0);
+    const __m256i filter = _mm256_mask_mov_epi32(minify_linear, magnify, magnify_linear);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(l0.data()), _mm256_castsi256_si128(level0));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(l1.data()), _mm256_castsi256_si128(level1));
+    _mm_storeu_ps(frac.data(), _mm256_castps256_ps128(fraction));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(linear.data()), _mm256_castsi256_si128(filter));
+}
+
 // sample() for a stage the block path covers: each lane's (u, v) (divided by w for texldp),
 // per quad the texel-space lengths of the coarse derivatives (TR - TL, BL - TL) and one level
-// choice (texldb lanes with a bias choose their own), then block_lookup(). A quad whose lengths
-// equal the previous quad's takes its level choice from `memo` (a function of the lengths for a
-// given texture and state; every quad of a screen-aligned pass hits).
+// choice (texldb lanes with a bias choose their own; a batch whose lengths are the stage's last
+// batch's takes its choices from `memo`), then block_lookup().
 SM2_AVX512 void block_sample(const Context& c, const BlockLevels& levels, const emu::TextureRequest& request, unsigned quads,
-                  TextureSampler::QuadLevelMemo& memo, std::array<emu::FloatLanes, 4>& texels) {
+                             TextureSampler::BatchLevelMemo& memo, std::array<emu::FloatLanes, 4>& texels) {
     static_assert(emu::kBatchQuads == 4, "block_coordinates() holds 4 quads' lengths");
     const auto& in = *request.coordinates;
     const bool biased = request.variant == emu::TextureVariant::Bias;
@@ -790,20 +900,15 @@ SM2_AVX512 void block_sample(const Context& c, const BlockLevels& levels, const 
     block_coordinates(c, request, lanes, lengths);
     // The LOD changes nothing when both filters agree and there are no mips to choose.
     const bool lod_matters = c.mip != Mip::None || c.mag != c.min;
-    std::array<int32_t, 4> l0{}, l1{}, linear{};
-    std::array<float, 4> frac{};
-    for (unsigned q = 0; q < quads; ++q) {
-        const double lx = lengths[q], ly = lengths[4 + q];
-        if (!(memo.texture == c.texture && memo.stage == request.sampler && memo.lx == lx && memo.ly == ly)) {
-            const LevelChoice choice = choose_levels(c, lod_matters ? compute_lod(c, lx, ly, 0.0f) : Lod{});
-            memo = {c.texture, request.sampler, lx, ly, choice.l0, choice.l1, choice.frac,
-                    choice.filter == Filter::Linear};
-        }
-        l0[q] = memo.l0;
-        l1[q] = memo.l1;
-        frac[q] = memo.frac;
-        linear[q] = memo.linear ? 1 : 0;
+    if (!memo.valid || std::memcmp(memo.lengths.data(), lengths.data(), sizeof lengths) != 0) {
+        block_choose_levels(c, lod_matters, lengths, memo.l0, memo.l1, memo.frac, memo.linear);
+        memo.lengths = lengths;
+        memo.valid = true;
     }
+    const auto& l0 = memo.l0;
+    const auto& l1 = memo.l1;
+    const auto& frac = memo.frac;
+    const auto& linear = memo.linear;
     const auto used = static_cast<__mmask16>((1u << (4 * quads)) - 1u);
     block_spread_choices(l0, l1, frac, linear, used, c.first, lanes);
     if (biased && lod_matters) {
@@ -876,6 +981,7 @@ std::shared_ptr<const TextureSampler::BlockLevels> TextureSampler::block_levels_
 
 void TextureSampler::prepare_stage(unsigned stage) {
     block_levels_.at(stage) = block_levels_for(stage);
+    level_memo_[stage].valid = false;
     prepared_[stage] = true;
 }
 
@@ -895,7 +1001,7 @@ void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::
     if (request.sampler < kStages && request.coordinates != nullptr) {
         if (!prepared_[request.sampler]) prepare_stage(request.sampler);
         const BlockLevels* levels_ptr = block_levels_[request.sampler].get();
-        if (levels_ptr != nullptr) return block_sample(levels_ptr->context, *levels_ptr, request, quads, memo_, texels);
+        if (levels_ptr != nullptr) return block_sample(levels_ptr->context, *levels_ptr, request, quads, level_memo_[request.sampler], texels);
     }
     texels = {kZero, kZero, kZero, kOne};  // what lanes without a lookup read: (0, 0, 0, 1)
     if (request.sampler >= kStages || request.coordinates == nullptr) return;

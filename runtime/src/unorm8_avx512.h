@@ -4,7 +4,8 @@
 
 #include <immintrin.h>
 
-#define SM2_AVX512 __attribute__((target("avx512f,avx512dq")))
+// Callers check avx512f, avx512dq and avx512vl.
+#define SM2_AVX512 __attribute__((target("avx512f,avx512dq,avx512vl")))
 
 namespace sm2::runtime::unorm8 {
 

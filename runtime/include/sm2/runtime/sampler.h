@@ -71,7 +71,6 @@ public:
     // A state changed through this reference is seen by the next prepare().
     [[nodiscard]] SamplerState& state(unsigned stage) {
         prepared_.at(stage) = false;
-        memo_ = {};
         return stages_.at(stage).state;
     }
 
@@ -94,15 +93,14 @@ public:
     void prepare_stage(unsigned stage);  // prepare() for one stage (sample() does it on first use)
 
     struct BlockLevels;  // the block path's per-texture tables (sampler.cpp)
-    // The block path's last quad: its texel-space derivative lengths and the level choice they
-    // gave on (texture, stage); any set_* call forgets it.
-    struct QuadLevelMemo {
-        const Texture* texture = nullptr;
-        unsigned stage = 0;
-        double lx = 0, ly = 0;
-        int l0 = 0, l1 = 0;
-        float frac = 0;
-        bool linear = false;
+    // The block path's last level choice per stage: the 4 quads' derivative lengths of the last
+    // batch and the levels they gave (a function of the lengths for a prepared stage, so a batch
+    // with the same lengths, as every batch of a screen-aligned pass, reuses them).
+    struct BatchLevelMemo {
+        bool valid = false;
+        std::array<double, 8> lengths{};
+        std::array<int32_t, 4> l0{}, l1{}, linear{};
+        std::array<float, 4> frac{};
     };
 
     [[nodiscard]] FilterPrecision precision() const { return precision_; }
@@ -137,12 +135,11 @@ private:
     // prepare()'s result per stage: whether it ran, and the tables (null: no block path).
     std::array<bool, kStages> prepared_{};
     std::array<std::shared_ptr<const BlockLevels>, kStages> block_levels_{};
-    QuadLevelMemo memo_{};
+    std::array<BatchLevelMemo, kStages> level_memo_{};  // valid only while the stage stays prepared
     // The stage's block-path tables, or null where the block path does not apply.
     [[nodiscard]] std::shared_ptr<const BlockLevels> block_levels_for(unsigned stage) const;
     void forget_prepared() {
         prepared_.fill(false);
-        memo_ = {};
     }
 };
 
