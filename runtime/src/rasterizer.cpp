@@ -117,6 +117,17 @@ void rasterize(const PrimitiveSetup& p, const PixelRect& region, std::vector<Qua
             if (c00 < 0 && c10 < 0 && c01 < 0 && c11 < 0) return;
             if (c00 < 0 || c10 < 0 || c01 < 0 || c11 < 0) all_inside = false;
         }
+        if (all_inside) {
+            // Every pixel of r: a quad's mask only loses the columns and rows outside r.
+            for (int32_t qy = even_floor(r.top); qy < r.bottom; qy += 2) {
+                const unsigned rows = (qy >= r.top ? 0x3u : 0u) | (qy + 1 < r.bottom ? 0xCu : 0u);
+                for (int32_t qx = even_floor(r.left); qx < r.right; qx += 2) {
+                    const unsigned columns = (qx >= r.left ? 0x5u : 0u) | (qx + 1 < r.right ? 0xAu : 0u);
+                    quads.push_back({qx, qy, static_cast<uint8_t>(rows & columns)});
+                }
+            }
+            return;
+        }
         for (int32_t qy = even_floor(r.top); qy < r.bottom; qy += 2) {
             const int64_t Y = static_cast<int64_t>(qy) * kSubPixelScale;
             std::array<int64_t, 3> row{};  // E at (qx, qy), stepped along the row
@@ -127,14 +138,11 @@ void rasterize(const PrimitiveSetup& p, const PixelRect& region, std::vector<Qua
                 for (unsigned i = 0; i < 4; ++i) {
                     const int32_t px = qx + static_cast<int32_t>(i & 1u), py = qy + static_cast<int32_t>(i >> 1);
                     if (!inside(r, px, py)) continue;
-                    bool in = all_inside;
-                    if (!in) {
-                        in = true;
-                        for (unsigned e = 0; e < 3 && in; ++e) {
-                            const EdgeFunction& f = p.edges[e];
-                            const int64_t v = row[e] + (i & 1u ? f.a * kSubPixelScale : 0) + (i >> 1 ? f.b * kSubPixelScale : 0);
-                            in = v >= 0;
-                        }
+                    bool in = true;
+                    for (unsigned e = 0; e < 3 && in; ++e) {
+                        const EdgeFunction& f = p.edges[e];
+                        const int64_t v = row[e] + (i & 1u ? f.a * kSubPixelScale : 0) + (i >> 1 ? f.b * kSubPixelScale : 0);
+                        in = v >= 0;
                     }
                     if (in) mask = static_cast<uint8_t>(mask | (1u << i));
                 }
