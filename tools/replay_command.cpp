@@ -15,7 +15,7 @@
 
 #include "commands.h"
 #include "io.h"
-#include "stream_assembler.h"
+#include "sm2/runtime/stream_assembler.h"
 #include "stream_io.h"
 #include "sm2/emu/jit.h"
 #include "sm2/runtime/command_stream.h"
@@ -32,7 +32,7 @@ runtime::ReplayOptions replay_options(const LoadedStream& loaded, unsigned max_s
     runtime::ReplayOptions options;
     options.file_name = loaded.file_name;
     options.base_dir = loaded.base_dir;
-    options.assembler = stream_assembler(max_slots);
+    options.assembler = runtime::stream_assembler(max_slots);
     return options;
 }
 

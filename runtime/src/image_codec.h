@@ -7,14 +7,7 @@
 // interface between the two is this table of functions; the module is built from the same
 // sources with the same compiler, and kAbiVersion changes whenever the table does.
 //
-// Where the module is looked for, first found wins (docs/embedding.md):
-//   1. $SM2EMU_IMAGE_IO, a path to the module (then only there);
-//   2. <folder of the running executable>/<bin-to-module path of the install layout>
-//      (an installed `sm2`: PREFIX/bin -> PREFIX/lib/sm2emu; the build tree has the same layout);
-//   3. the same relative path, and ./sm2emu/, from the file that holds this code (a shared
-//      libsm2_runtime);
-//   4. the install folder chosen at configure time (CMAKE_INSTALL_FULL_LIBDIR/sm2emu);
-//   5. the build tree's folder.
+// Where the module is looked for: common/sm2_internal/module_loader.h ($SM2EMU_IMAGE_IO first).
 #pragma once
 
 #include <cstdint>

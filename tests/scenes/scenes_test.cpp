@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/stream_assembler.h"
+#include "sm2/runtime/stream_assembler.h"
 #include "sm2/runtime/command_stream.h"
 #include "sm2/runtime/image_io.h"
 #include "sm2/runtime/replay.h"
@@ -75,7 +75,7 @@ Replayed replay_scene(const std::string& file, unsigned threads, bool reference_
     ReplayOptions replay_options;
     replay_options.file_name = file;
     replay_options.base_dir = kScenes.string();
-    replay_options.assembler = tools::stream_assembler(options.max_instruction_slots);
+    replay_options.assembler = runtime::stream_assembler(options.max_instruction_slots);
     out.result = replay(*out.device, *parsed.stream, replay_options);
     return out;
 }

@@ -1,6 +1,8 @@
-// Start-up: commands that touch no image must not load OpenImageIO. The image I/O module
-// (runtime/src/image_codec.h) is dlopen()ed by the first image read or write; the dynamic
-// loader's own log (LD_DEBUG=files) says which shared objects a process opened.
+// Start-up: commands that touch no image must not load OpenImageIO, and commands that run no
+// shader natively must not load LLVM. The image I/O module (runtime/src/image_codec.h) is
+// dlopen()ed by the first image read or write, the JIT module (emu/src/jit_module) by the first
+// use of the JIT; the dynamic loader's own log (LD_DEBUG=files) says which shared objects a
+// process opened.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -52,10 +54,31 @@ TEST(CliStartup, AsmAndVersionLoadNoImageLibrary) {
     EXPECT_NE(a.err.find("calling init:"), std::string::npos) << "LD_DEBUG gave no log";
     EXPECT_EQ(a.err.find("OpenImageIO"), std::string::npos) << a.err;
     EXPECT_EQ(a.err.find("sm2emu_image_io"), std::string::npos) << a.err;
+    EXPECT_EQ(a.err.find("libLLVM"), std::string::npos) << a.err;
+    EXPECT_EQ(a.err.find("sm2emu_jit"), std::string::npos) << a.err;
     auto v = sm2_with("LD_DEBUG=files", "--version");
     EXPECT_EQ(v.status, 0);
     EXPECT_EQ(v.err.find("OpenImageIO"), std::string::npos);
+    EXPECT_EQ(v.err.find("libLLVM"), std::string::npos);
 }
+
+#ifdef SM2_HAS_JIT
+TEST(CliStartup, TheJitLoadsLlvmWhenItRunsAShader) {
+    const std::string shader = "ps_2_0\ndef c1, 0.5, 0.25, 2, 1\nmul r0, c0, c1\nmov oC0, r0\n";
+    auto jit = sm2_with("LD_DEBUG=files", "run - --const c0=1,2,3,4 --engine jit", shader);
+    ASSERT_EQ(jit.status, 0) << jit.out;
+    EXPECT_EQ(jit.out, "oC0 = 0.5 0.5 6 4\n");
+    EXPECT_NE(jit.err.find("sm2emu_jit"), std::string::npos);
+    EXPECT_NE(jit.err.find("libLLVM"), std::string::npos);
+    auto interpreted = sm2_with("LD_DEBUG=files", "run - --const c0=1,2,3,4 --engine interpreter", shader);
+    EXPECT_EQ(interpreted.out, "oC0 = 0.5 0.5 6 4\n");
+    EXPECT_EQ(interpreted.err.find("libLLVM"), std::string::npos);
+    // Without its module the JIT is unavailable and replay interprets (the same bytes).
+    auto missing = sm2_with("SM2EMU_JIT=/nonexistent/sm2emu_jit.so", "bench - --repeat 1 --engine jit", kTinyScene);
+    EXPECT_EQ(missing.status, 0) << missing.err;
+    EXPECT_NE(missing.out.find("engine: jit (not in this build: interpreter)"), std::string::npos) << missing.out;
+}
+#endif
 
 TEST(CliStartup, WritingAFrameLoadsTheImageModule) {
     const std::string dir = tmp("frames");

@@ -1,6 +1,11 @@
 // Shader text in a command stream (asm<<END heredocs, text side files) goes through the
-// assembler; the runtime does not link it, so whoever replays hands this adaptor in: the sm2
-// tool, and the tests and fuzz target that replay streams. Header-only for that reason.
+// assembler; the runtime does not link it (DESIGN.md: the runtime uses isa and emu only), so
+// whoever replays hands this adaptor in as ReplayOptions::assembler: the sm2 tool, the tests,
+// the fuzz target, a program that embeds sm2emu. Header-only for that reason: a program that
+// includes it links sm2emu::assembler as well as sm2emu::runtime (or sm2emu::sm2emu, both).
+//
+//   sm2::runtime::ReplayOptions options;
+//   options.assembler = sm2::runtime::stream_assembler();
 #pragma once
 
 #include <string_view>
@@ -9,17 +14,17 @@
 #include "sm2/assembler/assembler.h"
 #include "sm2/runtime/replay.h"
 
-namespace sm2::tools {
+namespace sm2::runtime {
 
 // Heredoc shaders are validated here, against `max_instruction_slots` (0: the profile's; the
 // device's --max-slots), so a violation keeps its line inside the heredoc. A failure reports the
 // first error.
-inline runtime::ShaderAssembler stream_assembler(unsigned max_instruction_slots = 0) {
+inline ShaderAssembler stream_assembler(unsigned max_instruction_slots = 0) {
     return [max_instruction_slots](std::string_view text) {
         assembler::AssembleOptions options;
         options.validation.max_instruction_slots = max_instruction_slots;
         auto assembled = assembler::assemble(text, options);
-        runtime::AssembledShader out;
+        AssembledShader out;
         if (assembled.program) {
             out.program = std::move(assembled.program);
             return out;
@@ -34,4 +39,4 @@ inline runtime::ShaderAssembler stream_assembler(unsigned max_instruction_slots 
     };
 }
 
-}  // namespace sm2::tools
+}  // namespace sm2::runtime
