@@ -28,11 +28,11 @@ namespace {
 
 namespace cs = runtime::cs;
 
-runtime::ReplayOptions replay_options(const LoadedStream& loaded, unsigned max_slots) {
+runtime::ReplayOptions replay_options(const LoadedStream& loaded) {
     runtime::ReplayOptions options;
     options.file_name = loaded.file_name;
     options.base_dir = loaded.base_dir;
-    options.assembler = runtime::stream_assembler(max_slots);
+    options.assembler = runtime::stream_assembler();
     return options;
 }
 
@@ -139,7 +139,7 @@ int run_replay(const ReplayCliOptions& o) {
     o.numeric.apply(device_options);
     runtime::Device device(device_options);
 
-    runtime::ReplayOptions options = replay_options(*loaded, o.numeric.max_slots);
+    runtime::ReplayOptions options = replay_options(*loaded);
     Progress progress(!o.quiet && isatty(STDERR_FILENO) != 0);
     options.progress = [&progress, &device](size_t done, size_t total) {
         progress.update(done, total, device.frames_presented());
@@ -193,7 +193,7 @@ std::string rate(double count, double seconds) {
 int run_bench(const BenchCliOptions& o) {
     auto loaded = load_stream(o.stream, "bench");
     if (!loaded) return kInvalidInput;
-    const runtime::ReplayOptions options = replay_options(*loaded, o.numeric.max_slots);
+    const runtime::ReplayOptions options = replay_options(*loaded);
 
     std::vector<runtime::ReplayResult> runs;
     runs.reserve(o.repeat);

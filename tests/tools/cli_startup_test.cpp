@@ -5,45 +5,14 @@
 // process opened.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
+
+#include "cli_support.h"
 
 namespace {
 
-struct Run {
-    int status = -1;
-    std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-std::string tmp(const std::string& name) {
-    return std::string(SM2_TEST_TMP) + "/" + std::to_string(getpid()) + "_startup_" + name;
-}
-
-// Runs `ENV sm2 ARGS` with stdin text; captures stdout, stderr and the exit status.
-Run sm2_with(const std::string& env, const std::string& args, const std::string& stdin_text = "") {
-    static int counter = 0;
-    const std::string base = tmp(std::to_string(counter++));
-    std::ofstream(base + ".in", std::ios::binary) << stdin_text;
-    const std::string cmd = env + " " + std::string(SM2_TOOL) + " " + args + " <" + base + ".in >" + base +
-                            ".out 2>" + base + ".err";
-    const int raw = std::system(cmd.c_str());
-    Run r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = slurp(base + ".out");
-    r.err = slurp(base + ".err");
-    return r;
-}
+using cli_support::sm2_with;
+using cli_support::tmp;
 
 const std::string kTinyScene = "sm2cs 1\nCreateDevice 4 4 A8R8G8B8\nClear TARGET 0xFF00FF00 1 0\nPresent\n";
 

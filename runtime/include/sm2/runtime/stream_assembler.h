@@ -16,11 +16,11 @@
 
 namespace sm2::runtime {
 
-// Heredoc shaders are validated here, against `max_instruction_slots` (0: the profile's; the
-// device's --max-slots), so a violation keeps its line inside the heredoc. A failure reports the
-// first error.
-inline ShaderAssembler stream_assembler(unsigned max_instruction_slots = 0) {
-    return [max_instruction_slots](std::string_view text) {
+// Heredoc shaders are validated here, against the device's instruction-slot limit the replayer
+// passes in (SetDeviceLimits, DeviceOptions::max_instruction_slots, sm2 --max-slots), so a
+// violation keeps its line inside the heredoc. A failure reports the first error.
+inline ShaderAssembler stream_assembler() {
+    return [](std::string_view text, unsigned max_instruction_slots) {
         assembler::AssembleOptions options;
         options.validation.max_instruction_slots = max_instruction_slots;
         auto assembled = assembler::assemble(text, options);
