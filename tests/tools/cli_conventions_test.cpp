@@ -140,3 +140,21 @@ TEST(CliConventions, ReplayRefusesOldFramesUnlessOverwrite) {
 }
 
 }  // namespace
+
+namespace {
+
+// sm2 run --json: numbers are numbers (the shortest text that reads back to the same float);
+// inf/-inf/nan are null there and named in the lane's "nonfinite" object.
+TEST(CliConventions, RunJsonHasNumbersAndNamesNonFiniteValues) {
+    const std::string shader = "ps_2_0\ndef c1, 0.1, -2.5, 0, 1\nrcp r0.x, c1.z\nmov r0.y, c1.x\nmov r0.z, c1.y\n"
+                               "add r0.w, r0.x, -r0.x\nmov oC0, r0\n";
+    auto r = sm2("run - --json", shader);
+    ASSERT_EQ(r.status, 0) << r.err;
+    // rcp(0) = +inf; inf - inf = nan
+    EXPECT_EQ(r.out, "{\"shader\":\"ps_2_0\",\"precision\":\"fp32\",\"lanes\":[{\"oC0\":{\"x\":null,\"y\":0.1,"
+                     "\"z\":-2.5,\"w\":null},\"nonfinite\":{\"oC0.x\":\"inf\",\"oC0.w\":\"nan\"}}]}\n");
+    auto text = sm2("run -", shader);
+    EXPECT_EQ(text.out, "oC0 = inf 0.1 -2.5 nan\n");
+}
+
+}  // namespace
