@@ -19,10 +19,7 @@ for stream in samples/scenes/*.sm2cs; do
     rm -rf "$out"
     mkdir -p "$out"
     count=$((count + 1))
-    # NN_name.options beside a stream: extra sm2 replay flags it needs (e.g. --max-slots 512).
-    options=()
-    if [ -f "samples/scenes/$name.options" ]; then read -r -a options < "samples/scenes/$name.options"; fi
-    if "$sm2" replay "$stream" -o "$out" "${options[@]}" > "$out/replay.log" 2>&1; then
+    if "$sm2" replay "$stream" -o "$out" > "$out/replay.log" 2>&1; then
         echo "ok    $name ($(ls "$out"/*.png 2>/dev/null | wc -l) images)"
     else
         echo "FAIL  $name (see $out/replay.log)"

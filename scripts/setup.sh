@@ -9,6 +9,7 @@ packages=(
   llvm-14-dev clang-14              # the shader JIT (emu/src/jit): LLVM ORC, clang++-14 for its kernels
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev
+  nlohmann-json3-dev                # sm2 run --json
   libglm-dev
   libopenimageio-dev
   glslang-dev glslang-tools spirv-tools

@@ -15,7 +15,7 @@
 
 #include "commands.h"
 #include "io.h"
-#include "stream_assembler.h"
+#include "sm2/runtime/stream_assembler.h"
 #include "stream_io.h"
 #include "sm2/emu/jit.h"
 #include "sm2/runtime/command_stream.h"
@@ -28,11 +28,11 @@ namespace {
 
 namespace cs = runtime::cs;
 
-runtime::ReplayOptions replay_options(const LoadedStream& loaded, unsigned max_slots) {
+runtime::ReplayOptions replay_options(const LoadedStream& loaded) {
     runtime::ReplayOptions options;
     options.file_name = loaded.file_name;
     options.base_dir = loaded.base_dir;
-    options.assembler = stream_assembler(max_slots);
+    options.assembler = runtime::stream_assembler();
     return options;
 }
 
@@ -71,8 +71,9 @@ struct NumericCliOptions {
         cmd.add_option("--threads", threads, "Threads for tiles (default: all cores; the image does not depend on it)")
             ->check(CLI::Range(1u, 256u));
         cmd.add_option("--precision", precision,
-                       "Shader arithmetic: fp32 (default), fp24 (ps results as s16e7), fp16 (fp24 and _pp as s10e5)")
-            ->check(CLI::IsMember({"fp32", "fp24", "fp16"}));
+                       "Shader arithmetic: fp32 (default), fp24 (ps results as s16e7), fp16 (fp24 and _pp as s10e5); "
+                       "fp64, the reference of sm2 run, is named but draws do not run it")
+            ->check(CLI::IsMember({"fp32", "fp24", "fp16", "fp64"}));
         cmd.add_option("--transcendentals", transcendentals, "exact (libm, default) or fast")
             ->check(CLI::IsMember({"exact", "fast"}));
         cmd.add_option("--filter", filter, "Filter weights: fixed8 (8-bit, as hardware; default) or exact")
@@ -81,6 +82,14 @@ struct NumericCliOptions {
                        "Instruction-slot limit shaders are validated against (default: the profile's; e.g. 512 "
                        "for ps_2_x-size shaders)")
             ->check(CLI::Range(1u, 65535u));
+    }
+    // The same --precision words as sm2 run; fp64 (IEEE double, no rounding) is the reference
+    // of single shaders, and the Device refuses draws in it: said once, before anything runs.
+    bool check(const char* command) const {
+        if (precision != "fp64") return true;
+        std::cerr << "sm2 " << command << ": --precision fp64 is the reference of single shaders (sm2 run "
+                  << "--precision fp64); draws run fp32, fp24 or fp16\n";
+        return false;
     }
     void apply(runtime::DeviceOptions& d) const {
         d.threads = threads;
@@ -98,18 +107,20 @@ struct ReplayCliOptions {
     std::string output;
     NumericCliOptions numeric;
     bool quiet = false;
+    bool overwrite = false;
 };
 
-// "statement 120/4000, frame 3" on one terminal line, at most ten times a second.
+// "call 120/4000, frame 3" on one terminal line, at most ten times a second; calls as the
+// summary counts them (comments and blank lines are statements, not calls).
 class Progress {
 public:
     explicit Progress(bool enabled) : enabled_(enabled) {}
-    void update(size_t done, size_t total, uint32_t frames) {
+    void update(size_t done, size_t total, size_t calls_done, size_t calls, uint32_t frames) {
         if (!enabled_) return;
         const auto now = std::chrono::steady_clock::now();
         if (done != total && now - last_ < std::chrono::milliseconds(100)) return;
         last_ = now;
-        std::fprintf(stderr, "\rreplay: statement %zu/%zu, frame %u", done, total, frames);
+        std::fprintf(stderr, "\rreplay: call %zu/%zu, frame %u", calls_done, calls, frames);
         std::fflush(stderr);
         shown_ = true;
     }
@@ -124,9 +135,38 @@ private:
     std::chrono::steady_clock::time_point last_{};
 };
 
+// The frames an earlier replay left in `folder` (frame_NNNN.png), sorted.
+std::vector<std::filesystem::path> old_frames(const std::string& folder) {
+    std::vector<std::filesystem::path> frames;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name.size() >= 14 && name.rfind("frame_", 0) == 0 && name.ends_with(".png") &&
+            std::all_of(name.begin() + 6, name.end() - 4, [](char c) { return c >= '0' && c <= '9'; }))
+            frames.push_back(entry.path());
+    }
+    std::sort(frames.begin(), frames.end());
+    return frames;
+}
+
 int run_replay(const ReplayCliOptions& o) {
+    if (!o.numeric.check("replay")) return kBadUsage;
     auto loaded = load_stream(o.stream, "replay");
     if (!loaded) return kInvalidInput;
+    // A folder with frames of an earlier replay would mix them with this one's.
+    if (const auto frames = old_frames(o.output); !frames.empty()) {
+        if (!o.overwrite) {
+            std::cerr << "sm2 replay: " << o.output << " already holds " << frames.size() << " frame"
+                      << (frames.size() == 1 ? "" : "s") << " of an earlier replay (" << frames.front().filename().string()
+                      << (frames.size() > 1 ? " ... " + frames.back().filename().string() : std::string())
+                      << "); use --overwrite to replace them, or another folder\n";
+            return kBadUsage;
+        }
+        for (const auto& f : frames) {
+            std::error_code remove_error;
+            std::filesystem::remove(f, remove_error);
+        }
+    }
     std::error_code ec;
     std::filesystem::create_directories(o.output, ec);
     if (ec || !std::filesystem::is_directory(o.output)) {
@@ -139,10 +179,14 @@ int run_replay(const ReplayCliOptions& o) {
     o.numeric.apply(device_options);
     runtime::Device device(device_options);
 
-    runtime::ReplayOptions options = replay_options(*loaded, o.numeric.max_slots);
+    runtime::ReplayOptions options = replay_options(*loaded);
     Progress progress(!o.quiet && isatty(STDERR_FILENO) != 0);
-    options.progress = [&progress, &device](size_t done, size_t total) {
-        progress.update(done, total, device.frames_presented());
+    std::vector<size_t> calls_before(loaded->stream.statements.size() + 1, 0);
+    for (size_t i = 0; i < loaded->stream.statements.size(); ++i)
+        calls_before[i + 1] = calls_before[i] + (loaded->stream.statements[i].kind == cs::Statement::Kind::Call);
+    options.progress = [&progress, &device, &calls_before](size_t done, size_t total) {
+        progress.update(done, total, calls_before[std::min(done, calls_before.size() - 1)], calls_before.back(),
+                        device.frames_presented());
     };
     runtime::Replayer replayer(device, options);
     const runtime::ReplayResult result = replayer.replay(loaded->stream);
@@ -153,7 +197,7 @@ int run_replay(const ReplayCliOptions& o) {
             const auto& f = result.frames[i];
             char name[32];
             std::snprintf(name, sizeof name, "frame_%04zu.png", i);
-            std::cout << name << ": " << fixed(f.seconds * 1000.0, 3) << " ms, " << f.statistics.draws << " draws, "
+            std::cout << (std::filesystem::path(o.output) / name).string() << ": " << fixed(f.seconds * 1000.0, 3) << " ms, " << f.statistics.draws << " draws, "
                       << f.statistics.vertices_shaded << " vertices, " << f.statistics.pixels_shaded << " pixels\n";
         }
     }
@@ -191,9 +235,10 @@ std::string rate(double count, double seconds) {
 }
 
 int run_bench(const BenchCliOptions& o) {
+    if (!o.numeric.check("bench")) return kBadUsage;
     auto loaded = load_stream(o.stream, "bench");
     if (!loaded) return kInvalidInput;
-    const runtime::ReplayOptions options = replay_options(*loaded, o.numeric.max_slots);
+    const runtime::ReplayOptions options = replay_options(*loaded);
 
     std::vector<runtime::ReplayResult> runs;
     runs.reserve(o.repeat);
@@ -257,7 +302,10 @@ void add_replay_commands(CLI::App& app, int& status) {
                   "to DIR; refused calls are reported with file:line (exit 1) and the replay goes on");
     replay->add_option("stream", r->stream, "Command stream, text (.sm2cs) or binary (.sm2cb); '-' for stdin")
         ->required();
-    replay->add_option("-o,--output", r->output, "Output folder (created if missing)")->required();
+    replay->add_option("-o,--output", r->output,
+                       "Output folder (created if missing; refused if it holds frames of an earlier replay)")
+        ->required();
+    replay->add_flag("--overwrite", r->overwrite, "Replace the frames (frame_NNNN.png) an earlier replay left in the folder");
     r->numeric.add_to(*replay);
     replay->add_flag("-q,--quiet", r->quiet, "Print only the summary (no per-frame lines, no progress)");
     replay->callback([r, &status] { status = run_replay(*r); });

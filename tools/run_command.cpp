@@ -11,6 +11,8 @@
 #include <type_traits>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "commands.h"
 #include "io.h"
 #include "sm2/assembler/assembler.h"
@@ -45,9 +47,9 @@ struct InputError {
 
 // Shortest text that reads back to the same value in the run's storage type (float or double).
 template <typename Real>
-std::string format_number(Real v, bool json) {
-    if (std::isnan(v)) return json ? "\"nan\"" : "nan";
-    if (std::isinf(v)) return json ? (v > 0 ? "\"inf\"" : "\"-inf\"") : (v > 0 ? "inf" : "-inf");
+std::string format_number(Real v) {
+    if (std::isnan(v)) return "nan";
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
     char buf[64];
     auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
     (void)ec;
@@ -241,7 +243,7 @@ void trace_step(std::ostringstream& out, const emu::Step& step, const BatchType&
         } else {
             for (unsigned c = 0; c < 4; ++c)
                 if (step.dest.mask & (1u << c))
-                    out << " " << kComponents[c] << "=" << format_number(batch.registers[step.dest.slot][c][lane], false);
+                    out << " " << kComponents[c] << "=" << format_number(batch.registers[step.dest.slot][c][lane]);
         }
         out << '\n';
     }
@@ -253,9 +255,12 @@ int execute_and_print(const emu::Executable& executable, const emu::ConstantFile
                       emu::Sampler& sampler) {
     using Real = std::remove_reference_t<decltype(std::declval<BatchType&>().registers[0][0][0])>;
     const auto& written = executable.components_written();
-    std::ostringstream text, json;
-    json << "{\"shader\": \"" << executable.version().name() << "\", \"precision\": \"" << o.precision
-         << "\", \"lanes\": [";
+    // --json (README, "sm2 run --json"): finite values are JSON numbers, the shortest text that
+    // reads back to the same value; inf, -inf and nan, which JSON has no numbers for, are null
+    // there and named as strings in the lane's "nonfinite" object ("oC0.y": "inf").
+    std::ostringstream text;
+    nlohmann::ordered_json json = {{"shader", executable.version().name()}, {"precision", o.precision}};
+    nlohmann::ordered_json& json_lanes = json["lanes"] = nlohmann::ordered_json::array();
     static constexpr char kComponents[] = "xyzw";
     // --engine jit: the executable as native code (float batches; --trace, fp64 and a build
     // without the JIT interpret).
@@ -292,36 +297,41 @@ int execute_and_print(const emu::Executable& executable, const emu::ConstantFile
         }
         for (unsigned lane = 0; lane < count; ++lane) {
             const unsigned global = first + lane;
-            if (global > 0) json << ", ";
-            json << "{";
+            nlohmann::ordered_json lane_json = nlohmann::ordered_json::object(), nonfinite = nlohmann::ordered_json::object();
             const std::string prefix = lane_total > 1 ? "lane " + std::to_string(global) + ": " : "";
             if (batch->killed & (emu::LaneMask{1} << lane)) {
                 text << prefix << "killed (texkill)\n";
-                json << "\"killed\": true";
+                lane_json["killed"] = true;
             }
             const bool killed = (batch->killed & (emu::LaneMask{1} << lane)) != 0;
-            bool first_output = true;
             for (unsigned s = 0; s < emu::kSlotCount && !killed; ++s) {
                 if (!emu::is_output_slot(s) || written[s] == 0) continue;
                 std::string mask;
                 std::string values;
-                std::string fields;
+                nlohmann::ordered_json fields = nlohmann::ordered_json::object();
                 for (unsigned c = 0; c < 4; ++c) {
                     if (!(written[s] & (1u << c))) continue;
                     const Real value = batch->registers[s][c][lane];
                     mask += kComponents[c];
-                    values += (values.empty() ? "" : " ") + format_number(value, false);
-                    fields += std::string(fields.empty() ? "" : ", ") + "\"" + kComponents[c] + "\": " + format_number(value, true);
+                    const std::string number = format_number(value);
+                    values += (values.empty() ? "" : " ") + number;
+                    const std::string component(1, kComponents[c]);
+                    if (std::isfinite(value)) {
+                        fields[component] = std::strtod(number.c_str(), nullptr);
+                    } else {
+                        fields[component] = nullptr;
+                        nonfinite[output_name(s) + "." + component] = number;
+                    }
                 }
                 text << prefix << output_name(s) << (mask == "xyzw" ? "" : "." + mask) << " = " << values << '\n';
-                json << (first_output ? "" : ", ") << "\"" << output_name(s) << "\": {" << fields << "}";
-                first_output = false;
+                lane_json[output_name(s)] = std::move(fields);
             }
-            json << "}";
+            if (!nonfinite.empty()) lane_json["nonfinite"] = std::move(nonfinite);
+            json_lanes.push_back(std::move(lane_json));
         }
     }
-    json << "]}\n";
-    std::cout << (o.json ? json.str() : text.str());
+    if (o.json) std::cout << json.dump() << '\n';
+    else std::cout << text.str();
     return kOk;
 }
 

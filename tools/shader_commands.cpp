@@ -1,6 +1,12 @@
 // sm2 asm / dis / validate.
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
 #include <cctype>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -120,7 +126,28 @@ struct AsmOptions {
     unsigned max_slots = 0;
 };
 
+// The file stdout is redirected to, when it is a regular file with the extension of a binary
+// shader (`sm2 asm x.asm > x.pso`); empty otherwise.
+std::string stdout_binary_file() {
+    struct stat st {};
+    if (fstat(STDOUT_FILENO, &st) != 0 || !S_ISREG(st.st_mode)) return {};
+    std::error_code ec;
+    const auto target = std::filesystem::read_symlink("/proc/self/fd/1", ec);
+    if (ec) return {};
+    std::string ext = target.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); });
+    constexpr std::array<std::string_view, 8> kBinary = {".bin", ".pso", ".vso", ".fxo", ".cso", ".o", ".obj", ".dxbc"};
+    return std::find(kBinary.begin(), kBinary.end(), ext) != kBinary.end() ? target.string() : std::string();
+}
+
 int run_asm(const AsmOptions& o) {
+    // Binary goes to a file, text to stdout: '-o -' (stdout) takes the text forms only.
+    if (o.format == "bin" && o.output == "-") {
+        std::cerr << "sm2 asm: binary output goes to a file: use -o FILE (or --format hex or c for text on "
+                     "stdout)\n";
+        return kBadUsage;
+    }
     std::string error;
     auto bytes = read_input(o.input, error);
     if (!bytes) {
@@ -135,8 +162,12 @@ int run_asm(const AsmOptions& o) {
     print_diagnostics(result.diagnostics);
     if (!result.ok()) return kInvalidInput;
 
-    // Without -o the bytes go to the terminal, so hex is the default there.
+    // Without -o the bytes go to stdout as text (hex); with -o FILE, binary.
     const std::string format = !o.format.empty() ? o.format : (o.output == "-" ? "hex" : "bin");
+    if (o.format.empty() && o.output == "-")
+        if (const std::string file = stdout_binary_file(); !file.empty())
+            std::cerr << "sm2 asm: note: stdout is " << file << ": writing hex words (text) there; for the "
+                      << "binary bytecode use -o " << file << '\n';
     bool written = false;
     if (format == "bin")
         written = write_output(o.output, isa::to_bytes(result.tokens), error);
@@ -216,9 +247,11 @@ void add_shader_commands(CLI::App& app, int& status) {
     auto asm_options = std::make_shared<AsmOptions>();
     auto* asm_cmd = app.add_subcommand("asm", "Assemble vs_2_0/ps_2_0 text into D3D9 bytecode");
     asm_cmd->add_option("input", asm_options->input, "Assembly file ('-' for stdin)")->required();
-    asm_cmd->add_option("-o,--output", asm_options->output, "Output file ('-' for stdout, the default)");
+    asm_cmd->add_option("-o,--output", asm_options->output,
+                        "Output file (default: stdout, '-', which takes the text forms hex and c only)");
     asm_cmd->add_option("--format", asm_options->format,
-                        "bin (raw DWORDs, default with -o), hex (default on stdout) or c (array)")
+                        "bin (raw little-endian DWORDs, the default with -o FILE), hex (words as text, the default on "
+                        "stdout) or c (a C array)")
         ->check(CLI::IsMember({"bin", "hex", "c"}));
     asm_cmd->add_option("--name", asm_options->array_name, "Array name for --format c");
     asm_cmd->add_flag("--no-validate", asm_options->no_validate,

@@ -15,7 +15,23 @@ namespace {
 
 namespace cs = runtime::cs;
 
-int run_pack(const std::string& input, const std::string& output) {
+// Binary goes to a file: without -o, IN.sm2cb beside IN; '-o -' (stdout) is refused.
+int run_pack(const std::string& input, std::string output) {
+    if (output == "-") {
+        std::cerr << "sm2 cs pack: the binary form goes to a file: use -o FILE (sm2 cs dump prints text)\n";
+        return kBadUsage;
+    }
+    if (output.empty()) {
+        if (input == "-") {
+            std::cerr << "sm2 cs pack: reading stdin: name the output with -o FILE\n";
+            return kBadUsage;
+        }
+        output = std::filesystem::path(input).replace_extension(".sm2cb").string();
+        if (output == input) {
+            std::cerr << "sm2 cs pack: " << input << " is already .sm2cb: name the output with -o FILE\n";
+            return kBadUsage;
+        }
+    }
     auto loaded = load_stream(input, "cs");
     if (!loaded) return kInvalidInput;
     const cs::Stream& stream = loaded->stream;
@@ -49,7 +65,7 @@ void add_stream_commands(CLI::App& app, int& status) {
     auto pack_out = std::make_shared<std::string>();
     auto* pack_cmd = cs_cmd->add_subcommand("pack", "Text (.sm2cs) to binary (.sm2cb)");
     pack_cmd->add_option("input", *pack_in, "Stream, text or binary ('-' for stdin)")->required();
-    pack_cmd->add_option("-o,--output", *pack_out, "Binary output file ('-' for stdout)")->required();
+    pack_cmd->add_option("-o,--output", *pack_out, "Binary output file (default: the input's name with .sm2cb)");
     pack_cmd->callback([pack_in, pack_out, &status] { status = run_pack(*pack_in, *pack_out); });
 
     auto dump_in = std::make_shared<std::string>();

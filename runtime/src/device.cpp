@@ -564,6 +564,14 @@ CallResult Device::present() {
     return {};
 }
 
+CallResult Device::set_max_instruction_slots(uint32_t slots) {
+    if (slots > 65535)
+        return CallResult::fail("instruction-slot limit " + std::to_string(slots) +
+                                " out of range (0 for the profile's, or 1 to 65535)");
+    options_.max_instruction_slots = slots;
+    return CallResult::success();
+}
+
 CallResult Device::save_surface(const std::string& name, const std::string& path) {
     const Surface* s = surface(name);
     if (!s) return CallResult::fail("SaveSurface: '" + name + "' is not a surface or texture");

@@ -1,8 +1,7 @@
 // Surfaces -> image files, image files -> float RGBA, and image comparison (sm2 diff).
-// PNG, TGA and EXR go through OpenImageIO; .raw (float RGBA, no header) is written here.
+// PNG, TGA and EXR go through OpenImageIO, loaded on first use (image_codec.h); .raw (float
+// RGBA, no header) is written here.
 #include "sm2/runtime/image_io.h"
-
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <bit>
@@ -12,6 +11,8 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+
+#include "image_codec.h"
 
 namespace sm2::runtime {
 
@@ -58,23 +59,25 @@ void write_raw(const Image& image, const std::string& path) {
     if (!out) fail(path, "write failed");
 }
 
+const image_codec::Functions& codec(const std::string& path) {
+    std::string error;
+    const image_codec::Functions* f = image_codec::functions(error);
+    if (!f) fail(path, error);
+    return *f;
+}
+
 void write_oiio(const Image& image, const std::string& path, bool eight_bit) {
-    auto output = OIIO::ImageOutput::create(path);
-    if (!output) fail(path, "no writer for this file: " + OIIO::geterror());
-    const OIIO::TypeDesc type = eight_bit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
-    OIIO::ImageSpec spec(static_cast<int>(image.width), static_cast<int>(image.height), 4, type);
-    spec.attribute("oiio:UnassociatedAlpha", 1);  // store the values as given, no premultiplication
-    if (!output->open(path, spec)) fail(path, "cannot open for writing: " + output->geterror());
+    const image_codec::Functions& f = codec(path);
+    std::string error;
     bool ok;
     if (eight_bit) {
         std::vector<uint8_t> bytes(image.rgba.size());
         std::transform(image.rgba.begin(), image.rgba.end(), bytes.begin(), to_unorm8);
-        ok = output->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+        ok = f.write(path.c_str(), image.width, image.height, true, bytes.data(), &error);
     } else {
-        ok = output->write_image(OIIO::TypeDesc::FLOAT, image.rgba.data());
+        ok = f.write(path.c_str(), image.width, image.height, false, image.rgba.data(), &error);
     }
-    if (!ok) fail(path, "write failed: " + output->geterror());
-    if (!output->close()) fail(path, "write failed: " + output->geterror());
+    if (!ok) fail(path, error);
 }
 
 // |a - b| of one channel: 0 when equal (infinities of one sign, or both NaN), infinity when one
@@ -128,20 +131,18 @@ void write_surface(const Surface& surface, const std::string& path) {
 Image read_image(const std::string& path) {
     if (file_kind(path) == FileKind::Raw)
         fail(path, ".raw files have no header, so their size is unknown; compare .exr files for float data");
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);  // values as stored: no premultiplication
-    auto input = OIIO::ImageInput::create(path);
-    if (!input) fail(path, "cannot read image: " + OIIO::geterror());
-    OIIO::ImageSpec spec;
-    if (!input->open(path, spec, config)) fail(path, "cannot read image: " + input->geterror());
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) fail(path, "empty image");
+    const image_codec::Functions& f = codec(path);
+    image_codec::Info spec;
+    image_codec::OpenStatus status{};
+    std::string error;
+    image_codec::Reader input(&f, f.open(path.c_str(), &spec, &status, &error));
+    if (status != image_codec::OpenStatus::Ok) fail(path, "cannot read image: " + error);
+    if (spec.width <= 0 || spec.height <= 0 || spec.channels <= 0) fail(path, "empty image");
     if (spec.depth > 1) fail(path, "volume images are not supported");
     const auto w = static_cast<uint32_t>(spec.width), h = static_cast<uint32_t>(spec.height);
-    const int channels = spec.nchannels;
+    const int channels = spec.channels;
     std::vector<float> pixels(size_t{w} * h * static_cast<size_t>(channels));
-    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
-        fail(path, "cannot read pixels: " + input->geterror());
-    input->close();
+    if (!input.read(pixels.data(), error)) fail(path, "cannot read pixels: " + error);
 
     Image image;
     image.width = w;

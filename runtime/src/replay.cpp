@@ -263,7 +263,7 @@ struct Context {
 isa::Program assemble_text(Context& c, const Args& args, size_t i, std::string_view text, const std::string& where) {
     if (!c.options.assembler)
         args.fail(i, "shader", "no assembler is available to this replay for shader text");
-    AssembledShader assembled = c.options.assembler(text);
+    AssembledShader assembled = c.options.assembler(text, c.device.max_instruction_slots());
     if (assembled.program) return std::move(*assembled.program);
     std::string message = assembled.error.empty() ? "the assembly has errors" : assembled.error;
     if (assembled.line > 0) {
@@ -549,6 +549,17 @@ const CallSpec kCalls[] = {
          return c.device.stretch_rect(a.identifier(0, "source"), a.identifier(1, "destination"), filter);
      }},
     {"Present", 0, 0, "no arguments", [](Context& c, const Args&) { return c.device.present(); }},
+    {"SetDeviceLimits", 2, kMany, "NAME value ... (INSTRUCTIONSLOTS n)",
+     [](Context& c, const Args& a) {
+         if (a.size() % 2 != 0) a.fail(a.size() - 1, "limit", "expects NAME value pairs, got an odd number of arguments");
+         for (size_t i = 0; i < a.size(); i += 2) {
+             const std::string name = a.identifier(i, "limit name");
+             if (name != "INSTRUCTIONSLOTS")
+                 a.fail(i, "limit name", "unknown limit '" + name + "' (expected INSTRUCTIONSLOTS)");
+             if (auto r = c.device.set_max_instruction_slots(a.u32(i + 1, "INSTRUCTIONSLOTS")); !r.ok) return r;
+         }
+         return CallResult::success();
+     }},
     {"SaveSurface", 2, 2, "surface \"file\"",
      [](Context& c, const Args& a) { return c.device.save_surface(a.identifier(0, "surface"), a.string(1, "file")); }},
 };

@@ -1,8 +1,6 @@
 // Image files -> Textures. DDS is parsed here (exact bits, mip chains, cube faces, volumes);
-// everything else goes through OpenImageIO.
+// everything else goes through OpenImageIO, loaded on first use (image_codec.h).
 #include "sm2/runtime/texture_io.h"
-
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cstring>
@@ -13,6 +11,7 @@
 #include <vector>
 
 #include "dxt.h"
+#include "image_codec.h"
 
 namespace sm2::runtime {
 
@@ -99,36 +98,32 @@ std::vector<std::byte> read_file(const std::string& path) {
 }
 
 Texture load_oiio(const std::string& path, const TextureLoadOptions& options) {
-    // Texels as stored in the file: no premultiplication of PNG/TGA alpha on read.
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    // create + open (rather than the static ImageInput::open) keeps the error on the object,
-    // so a failed open leaves nothing in OpenImageIO's per-thread error string.
-    auto input = OIIO::ImageInput::create(path);
-    if (!input) fail(path, "no reader for this file: " + OIIO::geterror());
-    OIIO::ImageSpec spec;
-    if (!input->open(path, spec, config)) fail(path, "cannot read image: " + input->geterror());
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) fail(path, "empty image");
+    std::string error;
+    const image_codec::Functions* f = image_codec::functions(error);
+    if (!f) fail(path, error);
+    image_codec::Info spec;
+    image_codec::OpenStatus status{};
+    image_codec::Reader input(f, f->open(path.c_str(), &spec, &status, &error));
+    if (status == image_codec::OpenStatus::NoReader) fail(path, "no reader for this file: " + error);
+    if (status != image_codec::OpenStatus::Ok) fail(path, "cannot read image: " + error);
+    if (spec.width <= 0 || spec.height <= 0 || spec.channels <= 0) fail(path, "empty image");
     if (spec.depth > 1) fail(path, "volume images are read from DDS files only");
     if (spec.width > static_cast<int>(Texture::kMaxSize2D) || spec.height > static_cast<int>(Texture::kMaxSize2D))
         fail(path, "larger than 4096 texels per side");
-    const int channels = spec.nchannels;
-    const auto base = spec.format.basetype;
+    const int channels = spec.channels;
     Format format;
-    if (base == OIIO::TypeDesc::UINT8)
+    if (spec.type == image_codec::PixelType::U8)
         format = channels == 1 ? Format::L8 : channels == 2 ? Format::A8L8 : Format::A8R8G8B8;
-    else if (base == OIIO::TypeDesc::UINT16)
+    else if (spec.type == image_codec::PixelType::U16)
         format = channels == 1 ? Format::L16 : Format::A16B16G16R16;
-    else if (base == OIIO::TypeDesc::HALF)
+    else if (spec.type == image_codec::PixelType::Half)
         format = channels == 1 ? Format::R16F : channels == 2 ? Format::G16R16F : Format::A16B16G16R16F;
     else
         format = channels == 1 ? Format::R32F : channels == 2 ? Format::G32R32F : Format::A32B32G32R32F;
 
     const auto w = static_cast<uint32_t>(spec.width), h = static_cast<uint32_t>(spec.height);
     std::vector<float> pixels(size_t{w} * h * static_cast<size_t>(channels));
-    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
-        fail(path, "cannot read pixels: " + input->geterror());
-    input->close();
+    if (!input.read(pixels.data(), error)) fail(path, "cannot read pixels: " + error);
 
     const bool mips = options.generate_mips && pow2(w) && pow2(h);
     if (options.generate_mips && !mips) fail(path, "mip generation needs power-of-two sizes");

@@ -8,7 +8,7 @@
 #include <span>
 #include <string_view>
 
-#include "tools/stream_assembler.h"
+#include "sm2/runtime/stream_assembler.h"
 #include "sm2/runtime/command_stream.h"
 #include "sm2/runtime/replay.h"
 
@@ -46,7 +46,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     Device device;  // no output_dir: Present writes nothing
     ReplayOptions options;
     options.base_dir = "/nonexistent";  // LoadTexture finds nothing
-    options.assembler = tools::stream_assembler();
+    options.assembler = runtime::stream_assembler();
     (void)replay(device, *parsed.stream, options);
     return 0;
 }

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/stream_assembler.h"
+#include "sm2/runtime/stream_assembler.h"
 #include "sm2/runtime/replay.h"
 
 namespace sm2::runtime {
@@ -56,7 +56,7 @@ Outcome replay_text(const std::string& body) {
     Device device;
     ReplayOptions options;
     options.file_name = "d.sm2cs";
-    options.assembler = tools::stream_assembler();
+    options.assembler = runtime::stream_assembler();
     out.result = replay(device, *parsed.stream, options);
     const Surface* back = device.surface("backbuffer");
     out.pixels.resize(back->bytes().size());

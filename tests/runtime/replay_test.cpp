@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/stream_assembler.h"
+#include "sm2/runtime/stream_assembler.h"
 #include "sm2/runtime/image_io.h"
 
 namespace sm2::runtime {
@@ -52,7 +52,7 @@ protected:
         ReplayOptions options;
         options.file_name = "t.sm2cs";
         options.base_dir = dir_.string();
-        options.assembler = tools::stream_assembler();
+        options.assembler = runtime::stream_assembler();
         return options;
     }
 

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/stream_assembler.h"
+#include "sm2/runtime/stream_assembler.h"
 #include "sm2/runtime/command_stream.h"
 #include "sm2/runtime/image_io.h"
 #include "sm2/runtime/replay.h"
@@ -39,17 +39,6 @@ struct Replayed {
     std::unique_ptr<Device> device;  // as the stream left it (surfaces, textures)
 };
 
-// A scene that needs a device option has `NN_name.options` beside it with the `sm2 replay`
-// flags (so far only `--max-slots N`, for ps_2_x-size shaders).
-unsigned max_slots_for(const std::string& file) {
-    std::ifstream in(kScenes / std::filesystem::path(file).replace_extension(".options"));
-    std::string flag;
-    unsigned value = 0;
-    while (in >> flag)
-        if (flag == "--max-slots") in >> value;
-    return value;
-}
-
 Replayed replay_scene(const std::string& file, unsigned threads, bool reference_paths = false) {
     Replayed out;
     std::ifstream in(kScenes / file, std::ios::binary);
@@ -66,7 +55,6 @@ Replayed replay_scene(const std::string& file, unsigned threads, bool reference_
     options.reference_paths = reference_paths;
     // The reference run interprets; every other run takes the JIT (where the build has one).
     options.engine = reference_paths ? DeviceOptions::Engine::Interpreter : DeviceOptions::Engine::Jit;
-    options.max_instruction_slots = max_slots_for(file);
     options.output_dir = "frames";  // any name: write_image keeps the surfaces instead
     options.write_image = [&out](const Surface& surface, const std::string& path) {
         out.images[std::filesystem::path(path).filename().string()] = surface;
@@ -75,7 +63,7 @@ Replayed replay_scene(const std::string& file, unsigned threads, bool reference_
     ReplayOptions replay_options;
     replay_options.file_name = file;
     replay_options.base_dir = kScenes.string();
-    replay_options.assembler = tools::stream_assembler(options.max_instruction_slots);
+    replay_options.assembler = runtime::stream_assembler();
     out.result = replay(*out.device, *parsed.stream, replay_options);
     return out;
 }

@@ -219,8 +219,8 @@ TEST(CliRun, LanesFromCsvAndTexkillAsJson) {
     write_file(lanes, "t0.x,t0.y,t0.z,t0.w\n1,2,3,4\n-1,0,0,0\n");
     auto r = sm2("run " + shader + " --lanes " + lanes + " --json");
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_EQ(r.out, "{\"shader\": \"ps_2_0\", \"precision\": \"fp32\", \"lanes\": "
-                     "[{\"oC0\": {\"x\": 1, \"y\": 2, \"z\": 3, \"w\": 4}}, {\"killed\": true}]}\n");
+    EXPECT_EQ(r.out, "{\"shader\":\"ps_2_0\",\"precision\":\"fp32\",\"lanes\":"
+                     "[{\"oC0\":{\"x\":1.0,\"y\":2.0,\"z\":3.0,\"w\":4.0}},{\"killed\":true}]}\n");
 }
 
 TEST(CliRun, TracePrintsEveryStepWithWhatItWrote) {

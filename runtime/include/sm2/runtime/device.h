@@ -153,6 +153,11 @@ public:
     CallResult end_scene();
     CallResult present();
     CallResult save_surface(const std::string& surface, const std::string& path);
+    // SetDeviceLimits: the instruction-slot limit that later CreateVertexShader/CreatePixelShader
+    // calls validate against (0: the profile's, 256 vs / 96 ps; 1..65535 otherwise; a larger
+    // value is a ps_2_x-size device). DeviceOptions::max_instruction_slots is its initial value.
+    CallResult set_max_instruction_slots(uint32_t slots);
+    [[nodiscard]] unsigned max_instruction_slots() const { return options_.max_instruction_slots; }
     // Copies the whole source surface (render target, or level 0 of a 2D texture) onto the whole
     // destination render target, scaling with POINT (NONE) or LINEAR filtering and converting
     // the format through decode_texel/encode_texel (stretch_rect.cpp).

@@ -23,14 +23,16 @@
 
 namespace sm2::runtime {
 
-// Shader assembly text -> program. The runtime does not depend on the assembler (DESIGN.md:
-// runtime uses isa and emu only), so whoever replays hands one in (tools/, tests/).
+// Shader assembly text -> program, validated against `max_instruction_slots` (0: the profile's;
+// the device's limit when the shader is created, SetDeviceLimits). The runtime does not depend
+// on the assembler (DESIGN.md: runtime uses isa and emu only), so whoever replays hands one in:
+// sm2/runtime/stream_assembler.h.
 struct AssembledShader {
     std::optional<isa::Program> program;
     std::string error;  // the first error, when there is no program
     uint32_t line = 0;  // its 1-based line in the assembly text (0: none)
 };
-using ShaderAssembler = std::function<AssembledShader(std::string_view text)>;
+using ShaderAssembler = std::function<AssembledShader(std::string_view text, unsigned max_instruction_slots)>;
 
 struct ReplayDiagnostic {
     std::string file;

@@ -1,0 +1,68 @@
+// Image files through OpenImageIO, loaded only when a file is read or written.
+//
+// OpenImageIO pulls in about 200 shared libraries, which cost every process a quarter of a
+// second to load: `sm2 asm` or `sm2 --version` must not pay for them. So the code that calls
+// OpenImageIO lives in a module of its own (runtime/src/image_codec/oiio.cpp, built as
+// sm2emu_image_io.so), and the runtime dlopen()s it on the first image read or write. The
+// interface between the two is this table of functions; the module is built from the same
+// sources with the same compiler, and kAbiVersion changes whenever the table does.
+//
+// Where the module is looked for: common/sm2_internal/module_loader.h ($SM2EMU_IMAGE_IO first).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace sm2::runtime::image_codec {
+
+constexpr uint32_t kAbiVersion = 1;
+
+enum class PixelType : int { U8, U16, Half, Float, Other };
+
+struct Info {
+    int width = 0, height = 0, depth = 1, channels = 0;
+    PixelType type = PixelType::Other;
+};
+
+enum class OpenStatus : int { Ok, NoReader, CannotOpen };
+
+struct Functions {
+    uint32_t abi_version;
+    uint32_t size;  // sizeof(Functions)
+    // Opens `path` for reading, alpha unassociated (values as stored). On failure: nullptr,
+    // *status says whether no reader knows the file or the reader failed, *error why.
+    void* (*open)(const char* path, Info* info, OpenStatus* status, std::string* error);
+    // Reads subimage 0, level 0, all channels, as float. False and *error on failure.
+    bool (*read)(void* reader, float* pixels, std::string* error);
+    void (*close)(void* reader);
+    // Writes RGBA: 8-bit (`rgba` is uint8_t) or float (`rgba` is float), unassociated alpha.
+    // False and *error ("no writer for this file: ...", "cannot open for writing: ...", "write
+    // failed: ...") on failure.
+    bool (*write)(const char* path, uint32_t width, uint32_t height, bool eight_bit, const void* rgba,
+                  std::string* error);
+};
+
+// The module's functions, loaded on the first call (thread-safe). nullptr when the module cannot
+// be loaded; `error` then says where it was looked for and why it failed.
+const Functions* functions(std::string& error);
+
+// A reader that closes itself.
+class Reader {
+public:
+    Reader(const Functions* f, void* handle) : f_(f), handle_(handle) {}
+    Reader(const Reader&) = delete;
+    Reader& operator=(const Reader&) = delete;
+    ~Reader() {
+        if (handle_) f_->close(handle_);
+    }
+    bool read(float* pixels, std::string& error) { return f_->read(handle_, pixels, &error); }
+
+private:
+    const Functions* f_;
+    void* handle_;
+};
+
+}  // namespace sm2::runtime::image_codec
+
+// The module's one exported symbol.
+extern "C" const sm2::runtime::image_codec::Functions* sm2emu_image_codec_v1();
