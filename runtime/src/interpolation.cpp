@@ -16,12 +16,13 @@ void interpolate(const PrimitiveSetup& p, std::span<const Quad> quads, uint16_t 
     const uint16_t used = static_cast<uint16_t>(varyings & p.varying_mask);
     // Pixel positions and coverage; lanes past the last quad repeat its position (their values
     // are computed and never used).
-    for (unsigned lane = 0; lane < N; ++lane) {
-        const size_t q = lane / 4 < n ? lane / 4 : n - 1;
-        const unsigned i = lane % 4;
-        lanes.x[lane] = quads[q].x + static_cast<int32_t>(i & 1u);
-        lanes.y[lane] = quads[q].y + static_cast<int32_t>(i >> 1);
-        if (lane / 4 < n && (quads[q].mask >> i & 1u)) lanes.coverage |= emu::LaneMask{1} << lane;
+    for (unsigned q = 0; q < emu::kBatchQuads; ++q) {
+        const Quad& quad = quads[q < n ? q : n - 1];
+        for (unsigned i = 0; i < 4; ++i) {
+            lanes.x[4 * q + i] = quad.x + static_cast<int32_t>(i & 1u);
+            lanes.y[4 * q + i] = quad.y + static_cast<int32_t>(i >> 1);
+        }
+        if (q < n) lanes.coverage |= static_cast<emu::LaneMask>(quad.mask & 0xFu) << (4 * q);
     }
     // Barycentric weights, depth and the perspective-correct weights, one loop per quantity over
     // all lanes (the compiler vectorizes them; each lane's arithmetic is the same as one at a time).
