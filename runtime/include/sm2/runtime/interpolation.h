@@ -17,12 +17,14 @@ namespace sm2::runtime {
 // Per-lane data the pixel stage needs beside the shader's registers.
 struct PixelLanes {
     unsigned quad_count = 0;
-    std::array<int32_t, emu::kBatchLanes> x{}, y{};
+    // (Each array on its own cache line: written and read as 64-byte vectors.)
+    alignas(64) std::array<int32_t, emu::kBatchLanes> x{};
+    alignas(64) std::array<int32_t, emu::kBatchLanes> y{};
     emu::LaneMask coverage = 0;  // lanes whose pixel the primitive covers
     // Zs at the pixel centre plus the primitive's depth bias (not yet clamped to [0, 1]; the
     // output merger uses oDepth instead when the shader writes it).
-    std::array<float, emu::kBatchLanes> depth{};
-    std::array<float, emu::kBatchLanes> fog{};  // interpolated oFog.x
+    alignas(64) std::array<float, emu::kBatchLanes> depth{};
+    alignas(64) std::array<float, emu::kBatchLanes> fog{};  // interpolated oFog.x
     bool clockwise = true;       // front set for two-sided stencil
 };
 
