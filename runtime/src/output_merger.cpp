@@ -278,15 +278,40 @@ SM2_AVX512 inline __m512 saturate16(__m512 v) {
 // 16 texels, unorm8::decode, saturate, blend_batch(), unorm8::encode, one scatter. The same
 // IEEE operations as merge_unorm8(), so the same bytes (output_merger_fast_test). offset: byte
 // offset of each lane's texel, for the lanes of `write`.
+// A batch whose 4 quads lie side by side in one quad row (x0, x0 + 2, x0 + 4, x0 + 6 at y0):
+// its texels are two runs of 8 in rows y0 and y0 + 1, read and written with masked row
+// loads/stores instead of a gather and a scatter. kRowLane[r][c]: the lane of row r, column c.
+constexpr std::array<std::array<unsigned, 8>, 2> kRowLane = {{{0, 1, 4, 5, 8, 9, 12, 13}, {2, 3, 6, 7, 10, 11, 14, 15}}};
+
+__mmask8 row_mask(emu::LaneMask lanes, unsigned row) {
+    unsigned m = 0;
+    for (unsigned c = 0; c < 8; ++c) m |= (lanes >> kRowLane[row][c] & 1u) << c;
+    return static_cast<__mmask8>(m);
+}
+
 SM2_AVX512 void merge_unorm8_avx512(const BlendState& b, const Unorm8Texel& fmt, Surface& surface, uint32_t mask,
                                     const Rgba<Lanes>& src, const std::array<int32_t, kLanes>& offset,
-                                    emu::LaneMask write) {
+                                    int64_t row_run, emu::LaneMask write) {
     std::byte* const bytes = surface.bytes().data();
     const auto lanes = static_cast<__mmask16>(write);
     const __m512i where = _mm512_loadu_si512(offset.data());
+    // Lane l of the batch from the two rows (row 0's texels in 0-7, row 1's in 16-23), and back.
+    const __m512i from_rows = _mm512_setr_epi32(0, 1, 16, 17, 2, 3, 18, 19, 4, 5, 20, 21, 6, 7, 22, 23);
+    const __m512i to_row0 = _mm512_setr_epi32(0, 1, 4, 5, 8, 9, 12, 13, 0, 0, 0, 0, 0, 0, 0, 0);
+    const __m512i to_row1 = _mm512_setr_epi32(2, 3, 6, 7, 10, 11, 14, 15, 0, 0, 0, 0, 0, 0, 0, 0);
+    const __mmask8 row0 = row_run >= 0 ? row_mask(write, 0) : 0, row1 = row_run >= 0 ? row_mask(write, 1) : 0;
+    std::byte* const run0 = row_run >= 0 ? bytes + row_run : bytes;
+    std::byte* const run1 = run0 + surface.row_pitch();
     Rgba<Lanes> dst, clamped, blended;
     if (b.enable || mask != 0xF) {
-        const __m512i stored = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, where, bytes, 1);
+        __m512i stored;
+        if (row_run >= 0) {
+            const __m512i r0 = _mm512_castsi256_si512(_mm256_maskz_loadu_epi32(row0, run0));
+            const __m512i r1 = _mm512_castsi256_si512(_mm256_maskz_loadu_epi32(row1, run1));
+            stored = _mm512_maskz_permutex2var_epi32(lanes, r0, from_rows, r1);
+        } else {
+            stored = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, where, bytes, 1);
+        }
         for (unsigned c = 0; c < 4; ++c) {
             const __m512 value = fmt.shift[c] < 0 ? _mm512_set1_ps(fmt.missing[c])
                                                   : unorm8::decode_at(stored, static_cast<unsigned>(fmt.shift[c]));
@@ -303,7 +328,12 @@ SM2_AVX512 void merge_unorm8_avx512(const BlendState& b, const Unorm8Texel& fmt,
         const __m512 value = _mm512_loadu_ps((mask >> c & 1u ? out[c] : dst[c]).v.data());
         packed = _mm512_or_si512(packed, _mm512_slli_epi32(unorm8::encode(value), static_cast<unsigned>(fmt.shift[c])));
     }
-    _mm512_mask_i32scatter_epi32(bytes, lanes, where, packed, 1);
+    if (row_run >= 0) {
+        _mm256_mask_storeu_epi32(run0, row0, _mm512_castsi512_si256(_mm512_permutexvar_epi32(to_row0, packed)));
+        _mm256_mask_storeu_epi32(run1, row1, _mm512_castsi512_si256(_mm512_permutexvar_epi32(to_row1, packed)));
+    } else {
+        _mm512_mask_i32scatter_epi32(bytes, lanes, where, packed, 1);
+    }
 }
 
 #if defined(__GNUC__) && !defined(__clang__)
@@ -461,7 +491,14 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
                     for (unsigned l = 0; l < kLanes; ++l)
                         offset[l] = static_cast<int32_t>(static_cast<uint32_t>(lanes.y[l]) * pitch +
                                                          static_cast<uint32_t>(lanes.x[l]) * 4u);
-                    merge_unorm8_avx512(s.blend, fmt, *surface, mask, src, offset, write);
+                    // Side by side in one quad row (see kRowLane), all 16 pixels inside the surface?
+                    bool run = lanes.quad_count == 4 && lanes.x[0] >= 0 && lanes.y[0] >= 0 &&
+                               static_cast<uint32_t>(lanes.x[0]) + 8 <= width &&
+                               static_cast<uint32_t>(lanes.y[0]) + 2 <= height;
+                    for (unsigned q = 1; q < 4; ++q)
+                        run = run && lanes.x[4 * q] == lanes.x[0] + static_cast<int32_t>(2 * q) && lanes.y[4 * q] == lanes.y[0];
+                    const int64_t row_run = run ? static_cast<int64_t>(offset[0]) : -1;
+                    merge_unorm8_avx512(s.blend, fmt, *surface, mask, src, offset, row_run, write);
                     continue;
                 }
                 std::array<size_t, kLanes> offset;  // used for the lanes in `write` only

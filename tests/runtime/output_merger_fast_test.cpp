@@ -182,7 +182,19 @@ Case random_case(Random& r, const std::vector<Format>& formats) {
     l.clockwise = r.chance(0.5);
     const bool repeats = r.chance(0.05);        // lanes anywhere, pixels may repeat
     const bool repeated_quads = r.chance(0.05);  // quads may repeat
-    for (unsigned q = 0; q < l.quad_count; ++q) {
+    // 4 quads side by side in one quad row, as the rasterizer makes them inside a primitive
+    // (the block path reads and writes such a batch as two rows), sometimes over an edge.
+    const bool side_by_side = !repeats && !repeated_quads && r.chance(0.3);
+    if (side_by_side) {
+        l.quad_count = 4;
+        const int32_t x0 = 2 * static_cast<int32_t>(r.below(w / 2 + 1)) - (r.chance(0.1) ? 2 : 0);
+        const int32_t y0 = 2 * static_cast<int32_t>(r.below(h / 2 + 1)) - (r.chance(0.1) ? 2 : 0);
+        for (unsigned i = 0; i < kLanes; ++i) {
+            l.x[i] = x0 + static_cast<int32_t>(2 * (i / 4) + (i & 1u));
+            l.y[i] = y0 + static_cast<int32_t>(i >> 1 & 1u);
+        }
+    }
+    for (unsigned q = 0; q < (side_by_side ? 0 : l.quad_count); ++q) {
         // 2x2 quads at distinct even positions, some hanging over an edge.
         int32_t qx = 0, qy = 0;
         for (bool fresh = false; !fresh;) {
