@@ -141,11 +141,28 @@ bool setup_triangle(const ClipVertex& v0, const ClipVertex& v1, const ClipVertex
     pixel_span(std::min({Y[0], Y[1], Y[2]}), std::max({Y[0], Y[1], Y[2]}), box.top, box.bottom);
     if (!finish_bounds(out, box, state)) return false;
 
-    // Barycentric planes from the snapped positions (origin at vertex 0).
-    const double x0 = static_cast<double>(X[0]) / kSubPixelScale, y0 = static_cast<double>(Y[0]) / kSubPixelScale;
-    const double x1 = static_cast<double>(X[1]) / kSubPixelScale - x0, y1 = static_cast<double>(Y[1]) / kSubPixelScale - y0;
-    const double x2 = static_cast<double>(X[2]) / kSubPixelScale - x0, y2 = static_cast<double>(Y[2]) / kSubPixelScale - y0;
-    const double a2 = x1 * y2 - x2 * y1;
+    // Barycentric planes (origin at vertex 0). Coverage uses the positions snapped to 1/256
+    // pixel; attributes the unsnapped ones, so that a value at a pixel centre is the exact
+    // perspective-correct one (snapping a thin or far triangle moves its vertices by up to 1/512
+    // pixel, which put a texture coordinate of a w 1..100 quad 6.6e-5 off). Where snapping
+    // changed the triangle's area by more than a factor of 2 (a sliver: its unsnapped planes
+    // would be steep and extrapolated to the snapped pixels), or flipped or zeroed it, the
+    // snapped positions are used.
+    double x0 = s[0].x, y0 = s[0].y;
+    double x1 = s[1].x - x0, y1 = s[1].y - y0;
+    double x2 = s[2].x - x0, y2 = s[2].y - y0;
+    double a2 = x1 * y2 - x2 * y1;
+    const double snapped_area = static_cast<double>(area) / (static_cast<double>(kSubPixelScale) * kSubPixelScale);
+    const double ratio = a2 / snapped_area;
+    if (!(ratio >= 0.5 && ratio <= 2.0)) {  // also NaN
+        x0 = static_cast<double>(X[0]) / kSubPixelScale;
+        y0 = static_cast<double>(Y[0]) / kSubPixelScale;
+        x1 = static_cast<double>(X[1]) / kSubPixelScale - x0;
+        y1 = static_cast<double>(Y[1]) / kSubPixelScale - y0;
+        x2 = static_cast<double>(X[2]) / kSubPixelScale - x0;
+        y2 = static_cast<double>(Y[2]) / kSubPixelScale - y0;
+        a2 = x1 * y2 - x2 * y1;
+    }
     out.origin_x = x0;
     out.origin_y = y0;
     out.b1 = {0.0, y2 / a2, -x2 / a2};

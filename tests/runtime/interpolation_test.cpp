@@ -3,7 +3,17 @@
 // and the lane layout of a pixel batch.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include <vector>
+
+#include <cstdio>
+
+#include <cmath>
+
 #include "sm2/runtime/interpolation.h"
+#include "sm2/runtime/rasterizer.h"
+#include "sm2/runtime/setup.h"
 
 namespace sm2::runtime {
 namespace {
@@ -80,6 +90,78 @@ TEST(Interpolation, PerspectiveCorrect) {
     // At the vertices themselves: u(0,0) = 0; u(8,0) would be 1.
     EXPECT_EQ(probe(p, 0, 0).batch.texcoord(0)[0][0], 0.0f);
 }
+
+// Accuracy (issue 13): a 128x128 target, a quad of two triangles whose vertices lie between
+// the 1/256-pixel snapping points, with w from 1 (left) to w_far (right) and a texture
+// coordinate u from 0 (left) to 1 (right). At every covered pixel centre the interpolated u
+// must be within 1e-6 relative (or 4 ulp) of the exact perspective-correct value, worked out
+// here from the same float clip positions in long double: the screen barycentrics (l0, l1, l2)
+// of the centre, then u = sum(li ui / wi) / sum(li / wi).
+void expect_exact_perspective(float w_far) {
+    SetupState state;
+    state.viewport = {0, 0, 128, 128, 0.0f, 1.0f};
+    state.clip_rect = {0, 0, 128, 128};
+    state.cull = CullMode::None;
+    // Screen corners (not on the 1/256 grid) and their w and u.
+    const double sx[4] = {0.3711, 127.6289, 127.1093, 0.8007}, sy[4] = {0.2093, 3.1417, 124.7771, 127.5311};
+    const float w[4] = {1.0f, w_far, w_far, 1.0f}, u[4] = {0.0f, 1.0f, 1.0f, 0.0f};
+    ClipVertex v[4];
+    for (int i = 0; i < 4; ++i) {
+        v[i].position = {static_cast<float>((sx[i] / 64.0 - 1.0) * w[i]), static_cast<float>((1.0 - sy[i] / 64.0) * w[i]),
+                         0.5f * w[i], w[i]};
+        v[i].varyings[kVaryingTexCoord0] = {u[i], 0, 0, 1};
+    }
+    // The screen position sm2 derives from a float clip position (to_screen), in long double.
+    auto screen = [](const ClipVertex& c, long double& x, long double& y) {
+        x = (static_cast<long double>(c.position[0]) / c.position[3] + 1.0L) * 64.0L;
+        y = (1.0L - static_cast<long double>(c.position[1]) / c.position[3]) * 64.0L;
+    };
+    const int triangles[2][3] = {{0, 1, 2}, {0, 2, 3}};
+    size_t checked = 0;
+    double worst = 0;
+    for (const auto& t : triangles) {
+        PrimitiveSetup p;
+        ASSERT_TRUE(setup_triangle(v[t[0]], v[t[1]], v[t[2]], v[t[0]], state, p));
+        ASSERT_TRUE(p.perspective);
+        long double X[3], Y[3];
+        for (int i = 0; i < 3; ++i) screen(v[t[i]], X[i], Y[i]);
+        std::vector<Quad> quads;
+        rasterize(p, PixelRect{0, 0, 128, 128}, quads);
+        for (size_t first = 0; first < quads.size(); first += emu::kBatchQuads) {
+            const size_t n = std::min<size_t>(emu::kBatchQuads, quads.size() - first);
+            emu::Batch batch;
+            PixelLanes lanes;
+            interpolate(p, std::span(quads).subspan(first, n), kAllVaryings, batch, lanes);
+            for (unsigned lane = 0; lane < 4 * n; ++lane) {
+                if (!(lanes.coverage >> lane & 1u)) continue;
+                const long double px = lanes.x[lane], py = lanes.y[lane];
+                const long double area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
+                const long double l1 = ((px - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (py - Y[0])) / area;
+                const long double l2 = ((X[1] - X[0]) * (py - Y[0]) - (px - X[0]) * (Y[1] - Y[0])) / area;
+                const long double l[3] = {1.0L - l1 - l2, l1, l2};
+                long double num = 0, den = 0;
+                for (int i = 0; i < 3; ++i) {
+                    num += l[i] * u[t[i]] / w[t[i]];
+                    den += l[i] / w[t[i]];
+                }
+                const double exact = static_cast<double>(num / den);
+                const float got = batch.texcoord(0)[0][lane];
+                const double error = std::fabs(got - exact);
+                const double ulp = std::nextafter(static_cast<float>(std::fabs(exact)), INFINITY) - static_cast<float>(std::fabs(exact));
+                EXPECT_TRUE(error <= 1e-6 * std::fabs(exact) || error <= 4 * ulp)
+                    << "w 1.." << w_far << " pixel (" << lanes.x[lane] << ", " << lanes.y[lane] << "): " << got
+                    << " against " << exact;
+                worst = std::max(worst, exact != 0 ? error / std::fabs(exact) : 0.0);
+                ++checked;
+            }
+        }
+    }
+    EXPECT_GT(checked, 15000u);  // nearly all 128 x 128 centres
+    std::printf("w 1..%g: %zu centres, worst relative error %.3g\n", static_cast<double>(w_far), checked, worst);
+}
+
+TEST(Interpolation, ExactPerspectiveAtPixelCentresForW1To4) { expect_exact_perspective(4.0f); }
+TEST(Interpolation, ExactPerspectiveAtPixelCentresForW1To100) { expect_exact_perspective(100.0f); }
 
 TEST(Interpolation, DepthBiasIsInTheDepth) {
     SetupState s = state16();

@@ -6,8 +6,10 @@
 // Precision: screen positions are snapped to 1/256 pixel (16.8 fixed point, D3D10's choice)
 // with round-to-nearest-even; coverage uses only the snapped integers (exact, independent of
 // triangle order). Pixel (px, py) is sampled at (px, py) (the D3D9 centre), which in fixed
-// point is (256 px, 256 py). Interpolation planes are computed in double from the snapped
-// positions.
+// point is (256 px, 256 py). Interpolation planes of triangles are computed in double from the
+// unsnapped positions (the exact perspective-correct value at each centre), from the snapped
+// ones where snapping changed the area by more than a factor of 2 (slivers); lines and points
+// use their snapped positions.
 //
 // Interpolation model: b1, b2 are the screen-space barycentrics of vertices 1 and 2 (linear
 // planes); perspective-correct ones are b_i' = b_i*rhw_i / (b0*rhw0 + b1*rhw1 + b2*rhw2), and
