@@ -11,6 +11,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+
+#include "sm2/runtime/file_io.h"
+#include "sm2/runtime/texture_io.h"
 #include <limits>
 
 namespace sm2::runtime {
@@ -64,6 +67,9 @@ void write_oiio(const Image& image, const std::string& path, bool eight_bit) {
     const OIIO::TypeDesc type = eight_bit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
     OIIO::ImageSpec spec(static_cast<int>(image.width), static_cast<int>(image.height), 4, type);
     spec.attribute("oiio:UnassociatedAlpha", 1);  // store the values as given, no premultiplication
+    // OpenImageIO stamps EXR files with the wall-clock time (capDate) unless DateTime is given:
+    // a fixed one keeps every output file byte-reproducible.
+    spec.attribute("DateTime", "1970:01:01 00:00:00");
     if (!output->open(path, spec)) fail(path, "cannot open for writing: " + output->geterror());
     bool ok;
     if (eight_bit) {
@@ -125,9 +131,51 @@ void write_surface(const Surface& surface, const std::string& path) {
     write_image(image, path);
 }
 
-Image read_image(const std::string& path) {
+Image read_image(const std::string& path, const ImageReadLimits& limits) {
     if (file_kind(path) == FileKind::Raw)
         fail(path, ".raw files have no header, so their size is unknown; compare .exr files for float data");
+    std::string error;
+    if (!check_input_file(path, kMaxImageFileBytes, error)) throw ImageIoError(error);
+    // Size checks before any pixel is allocated: sides up to limits.max_side (so that w * h
+    // cannot overflow), and w * h RGBA floats within limits.max_bytes.
+    auto check_size = [&](uint64_t w, uint64_t h) {
+        if (w == 0 || h == 0) fail(path, "empty image");
+        if (w > limits.max_side || h > limits.max_side)
+            fail(path, std::to_string(w) + "x" + std::to_string(h) + " is larger than " +
+                           std::to_string(limits.max_side) + " pixels per side");
+        if (w * h > limits.max_bytes / 16)
+            fail(path, std::to_string(w) + "x" + std::to_string(h) + " needs " + std::to_string(w * h * 16) +
+                           " bytes as float RGBA, more than the " + std::to_string(limits.max_bytes) + "-byte limit");
+    };
+    {
+        // DDS files go through the project's own reader (exact bits, every D3DFORMAT; DXTn decoded).
+        std::ifstream in(path, std::ios::binary);
+        char magic[4] = {};
+        in.read(magic, 4);
+        if (in.gcount() == 4 && std::memcmp(magic, "DDS ", 4) == 0) {
+            const auto data = read_file_limited(path, kMaxImageFileBytes, error);
+            if (!data) throw ImageIoError(error);
+            Texture texture;
+            try {
+                texture = load_dds(*data, path);
+            } catch (const TextureIoError& e) {
+                throw ImageIoError(e.what());
+            }
+            if (texture.type() != TextureType::Texture2D) fail(path, "cube and volume DDS files cannot be compared");
+            const Surface& s = texture.surface(0, 0);
+            check_size(s.width(), s.height());
+            Image image;
+            image.width = s.width();
+            image.height = s.height();
+            image.rgba.resize(size_t{image.width} * image.height * 4);
+            for (uint32_t y = 0; y < image.height; ++y)
+                for (uint32_t x = 0; x < image.width; ++x) {
+                    const Float4 v = s.read(x, y, 0);
+                    std::copy(v.begin(), v.end(), image.rgba.begin() + static_cast<std::ptrdiff_t>((size_t{y} * image.width + x) * 4));
+                }
+            return image;
+        }
+    }
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);  // values as stored: no premultiplication
     auto input = OIIO::ImageInput::create(path);
@@ -136,19 +184,22 @@ Image read_image(const std::string& path) {
     if (!input->open(path, spec, config)) fail(path, "cannot read image: " + input->geterror());
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) fail(path, "empty image");
     if (spec.depth > 1) fail(path, "volume images are not supported");
+    check_size(static_cast<uint64_t>(spec.width), static_cast<uint64_t>(spec.height));
     const auto w = static_cast<uint32_t>(spec.width), h = static_cast<uint32_t>(spec.height);
-    const int channels = spec.nchannels;
-    std::vector<float> pixels(size_t{w} * h * static_cast<size_t>(channels));
-    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
-        fail(path, "cannot read pixels: " + input->geterror());
-    input->close();
-
+    // At most 4 channels are read (a file may declare any number), straight into the RGBA
+    // buffer, then spread out in place: the image costs w * h * 16 bytes and no more.
+    const int channels = std::min(spec.nchannels, 4);
     Image image;
     image.width = w;
     image.height = h;
     image.rgba.resize(size_t{w} * h * 4);
-    for (size_t i = 0; i < size_t{w} * h; ++i) {
-        const float* p = &pixels[i * static_cast<size_t>(channels)];
+    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, image.rgba.data()))
+        fail(path, "cannot read pixels: " + input->geterror());
+    input->close();
+    const size_t c = static_cast<size_t>(channels);
+    for (size_t i = size_t{w} * h; i-- > 0;) {  // last pixel first: never overwrites unread input
+        float p[4] = {0, 0, 0, 1};
+        std::copy_n(&image.rgba[i * c], c, p);
         float* o = &image.rgba[i * 4];
         if (channels <= 2) {  // grey (and alpha)
             o[0] = o[1] = o[2] = p[0];
@@ -157,7 +208,7 @@ Image read_image(const std::string& path) {
             o[0] = p[0];
             o[1] = p[1];
             o[2] = p[2];
-            o[3] = channels >= 4 ? p[3] : 1.0f;
+            o[3] = channels == 4 ? p[3] : 1.0f;
         }
     }
     return image;

@@ -5,14 +5,15 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <iterator>
 #include <memory>
 #include <optional>
 #include <vector>
 
 #include "dxt.h"
+#include "sm2/runtime/file_io.h"
 
 namespace sm2::runtime {
 
@@ -86,16 +87,9 @@ Format dds_format(std::span<const std::byte> d, const std::string& name) {
         const bool colour = kind == kAlpha || (m.r == r && m.g == g && m.b == b);
         if (colour && m.a == alpha) return m.format;
     }
-    fail(name, "unsupported pixel format (flags 0x" + std::to_string(flags) + ", " + std::to_string(bits) + " bits)");
-}
-
-std::vector<std::byte> read_file(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(path, "cannot open");
-    std::vector<char> raw((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    std::vector<std::byte> out(raw.size());
-    if (!raw.empty()) std::memcpy(out.data(), raw.data(), raw.size());
-    return out;
+    char hex[16];
+    std::snprintf(hex, sizeof hex, "%X", flags);
+    fail(name, "unsupported pixel format (flags 0x" + std::string(hex) + ", " + std::to_string(bits) + " bits)");
 }
 
 Texture load_oiio(const std::string& path, const TextureLoadOptions& options) {
@@ -104,6 +98,8 @@ Texture load_oiio(const std::string& path, const TextureLoadOptions& options) {
     config.attribute("oiio:UnassociatedAlpha", 1);
     // create + open (rather than the static ImageInput::open) keeps the error on the object,
     // so a failed open leaves nothing in OpenImageIO's per-thread error string.
+    std::string error;
+    if (!check_input_file(path, kMaxImageFileBytes, error)) throw TextureIoError(error);
     auto input = OIIO::ImageInput::create(path);
     if (!input) fail(path, "no reader for this file: " + OIIO::geterror());
     OIIO::ImageSpec spec;
@@ -112,7 +108,9 @@ Texture load_oiio(const std::string& path, const TextureLoadOptions& options) {
     if (spec.depth > 1) fail(path, "volume images are read from DDS files only");
     if (spec.width > static_cast<int>(Texture::kMaxSize2D) || spec.height > static_cast<int>(Texture::kMaxSize2D))
         fail(path, "larger than 4096 texels per side");
-    const int channels = spec.nchannels;
+    // At most 4 channels are read (an image may declare thousands), so the pixels below take at
+    // most 4096 x 4096 x 4 floats.
+    const int channels = std::min(spec.nchannels, 4);
     const auto base = spec.format.basetype;
     Format format;
     if (base == OIIO::TypeDesc::UINT8)
@@ -200,14 +198,18 @@ Texture load_dds(std::span<const std::byte> d, const std::string& name, const Te
 }
 
 Texture load_texture(const std::string& path, const TextureLoadOptions& options) {
+    // Only regular files of at most kMaxImageFileBytes (not a directory, a FIFO or /dev/zero).
+    std::string error;
+    if (!check_input_file(path, kMaxImageFileBytes, error)) throw TextureIoError(error);
     {
         std::ifstream in(path, std::ios::binary);
         if (!in) fail(path, "cannot open");
         char magic[4] = {};
         in.read(magic, 4);
         if (in.gcount() == 4 && std::memcmp(magic, "DDS ", 4) == 0) {
-            const std::vector<std::byte> data = read_file(path);
-            return load_dds(data, path, options);
+            const auto data = read_file_limited(path, kMaxImageFileBytes, error);
+            if (!data) throw TextureIoError(error);
+            return load_dds(*data, path, options);
         }
     }
     return load_oiio(path, options);
