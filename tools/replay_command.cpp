@@ -32,6 +32,7 @@ runtime::ReplayOptions replay_options(const LoadedStream& loaded, unsigned max_s
     runtime::ReplayOptions options;
     options.file_name = loaded.file_name;
     options.base_dir = loaded.base_dir;
+    options.root_dir = loaded.root_dir;
     options.assembler = stream_assembler(max_slots);
     return options;
 }
@@ -62,6 +63,8 @@ struct NumericCliOptions {
     std::string filter = "fixed8";
     unsigned max_slots = 0;
     std::string engine = kDefaultEngine;
+    uint64_t memory_limit_mib = runtime::kDefaultMemoryLimit >> 20;
+    std::string read_root;
 
     void add_to(CLI::App& cmd) {
         cmd.add_option("--engine", engine,
@@ -81,6 +84,12 @@ struct NumericCliOptions {
                        "Instruction-slot limit shaders are validated against (default: the profile's; e.g. 512 "
                        "for ps_2_x-size shaders)")
             ->check(CLI::Range(1u, 65535u));
+        cmd.add_option("--memory-limit", memory_limit_mib,
+                       "MiB all resources together may hold; a creation past it is refused with "
+                       "D3DERR_OUTOFVIDEOMEMORY and the replay goes on (default " +
+                           std::to_string(runtime::kDefaultMemoryLimit >> 20) + ")")
+            ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 20));
+        add_read_root_option(cmd, read_root);
     }
     void apply(runtime::DeviceOptions& d) const {
         d.threads = threads;
@@ -89,6 +98,7 @@ struct NumericCliOptions {
         if (transcendentals == "fast") d.precision.transcendentals = emu::Transcendentals::Fast;
         d.filter_precision = filter == "exact" ? runtime::FilterPrecision::Exact : runtime::FilterPrecision::Fixed8;
         d.max_instruction_slots = max_slots;
+        d.memory_limit = memory_limit_mib << 20;
         d.engine = engine == "jit" ? runtime::DeviceOptions::Engine::Jit : runtime::DeviceOptions::Engine::Interpreter;
     }
 };
@@ -125,7 +135,7 @@ private:
 };
 
 int run_replay(const ReplayCliOptions& o) {
-    auto loaded = load_stream(o.stream, "replay");
+    auto loaded = load_stream(o.stream, "replay", o.numeric.read_root);
     if (!loaded) return kInvalidInput;
     std::error_code ec;
     std::filesystem::create_directories(o.output, ec);
@@ -191,7 +201,7 @@ std::string rate(double count, double seconds) {
 }
 
 int run_bench(const BenchCliOptions& o) {
-    auto loaded = load_stream(o.stream, "bench");
+    auto loaded = load_stream(o.stream, "bench", o.numeric.read_root);
     if (!loaded) return kInvalidInput;
     const runtime::ReplayOptions options = replay_options(*loaded, o.numeric.max_slots);
 
