@@ -1,38 +1,18 @@
 #include "io.h"
 
+#include "sm2/runtime/file_io.h"
+
 #include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <iostream>
-#include <iterator>
 
 namespace sm2::tools {
 
 std::string display_name(const std::string& path) { return path == "-" ? "<stdin>" : path; }
 
 std::optional<std::vector<std::byte>> read_input(const std::string& path, std::string& error) {
-    std::vector<char> chars;
-    if (path == "-") {
-        chars.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
-        if (std::cin.bad()) {
-            error = "<stdin>: read error";
-            return std::nullopt;
-        }
-    } else {
-        std::ifstream in(path, std::ios::binary);
-        if (!in) {
-            error = path + ": cannot open: " + std::strerror(errno);
-            return std::nullopt;
-        }
-        chars.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-        if (in.bad()) {
-            error = path + ": read error";
-            return std::nullopt;
-        }
-    }
-    std::vector<std::byte> bytes(chars.size());
-    if (!chars.empty()) std::memcpy(bytes.data(), chars.data(), chars.size());
-    return bytes;
+    return runtime::read_file_limited(path, runtime::kMaxInputFileBytes, error);
 }
 
 bool write_output(const std::string& path, const std::vector<std::byte>& data, std::string& error) {

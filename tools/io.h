@@ -8,7 +8,8 @@
 
 namespace sm2::tools {
 
-// Reads the whole file (or stdin for "-"); nullopt and a message in `error` on failure.
+// Reads the whole file (or stdin for "-"): a regular file of at most runtime::kMaxInputFileBytes
+// (runtime/file_io.h); nullopt and a message in `error` on failure.
 std::optional<std::vector<std::byte>> read_input(const std::string& path, std::string& error);
 // Writes (or stdout for "-"); false and a message in `error` on failure.
 bool write_output(const std::string& path, const std::vector<std::byte>& data, std::string& error);

@@ -32,6 +32,7 @@ runtime::ReplayOptions replay_options(const LoadedStream& loaded) {
     runtime::ReplayOptions options;
     options.file_name = loaded.file_name;
     options.base_dir = loaded.base_dir;
+    options.root_dir = loaded.root_dir;
     options.assembler = runtime::stream_assembler();
     return options;
 }
@@ -62,6 +63,8 @@ struct NumericCliOptions {
     std::string filter = "fixed8";
     unsigned max_slots = 0;
     std::string engine = kDefaultEngine;
+    uint64_t memory_limit_mib = runtime::kDefaultMemoryLimit >> 20;
+    std::string read_root;
 
     void add_to(CLI::App& cmd) {
         cmd.add_option("--engine", engine,
@@ -82,6 +85,12 @@ struct NumericCliOptions {
                        "Instruction-slot limit shaders are validated against (default: the profile's; e.g. 512 "
                        "for ps_2_x-size shaders)")
             ->check(CLI::Range(1u, 65535u));
+        cmd.add_option("--memory-limit", memory_limit_mib,
+                       "MiB all resources together may hold; a creation past it is refused with "
+                       "D3DERR_OUTOFVIDEOMEMORY and the replay goes on (default " +
+                           std::to_string(runtime::kDefaultMemoryLimit >> 20) + ")")
+            ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 20));
+        add_read_root_option(cmd, read_root);
     }
     // The same --precision words as sm2 run; fp64 (IEEE double, no rounding) is the reference
     // of single shaders, and the Device refuses draws in it: said once, before anything runs.
@@ -98,6 +107,7 @@ struct NumericCliOptions {
         if (transcendentals == "fast") d.precision.transcendentals = emu::Transcendentals::Fast;
         d.filter_precision = filter == "exact" ? runtime::FilterPrecision::Exact : runtime::FilterPrecision::Fixed8;
         d.max_instruction_slots = max_slots;
+        d.memory_limit = memory_limit_mib << 20;
         d.engine = engine == "jit" ? runtime::DeviceOptions::Engine::Jit : runtime::DeviceOptions::Engine::Interpreter;
     }
 };
@@ -151,7 +161,7 @@ std::vector<std::filesystem::path> old_frames(const std::string& folder) {
 
 int run_replay(const ReplayCliOptions& o) {
     if (!o.numeric.check("replay")) return kBadUsage;
-    auto loaded = load_stream(o.stream, "replay");
+    auto loaded = load_stream(o.stream, "replay", o.numeric.read_root);
     if (!loaded) return kInvalidInput;
     // A folder with frames of an earlier replay would mix them with this one's.
     if (const auto frames = old_frames(o.output); !frames.empty()) {
@@ -236,7 +246,7 @@ std::string rate(double count, double seconds) {
 
 int run_bench(const BenchCliOptions& o) {
     if (!o.numeric.check("bench")) return kBadUsage;
-    auto loaded = load_stream(o.stream, "bench");
+    auto loaded = load_stream(o.stream, "bench", o.numeric.read_root);
     if (!loaded) return kInvalidInput;
     const runtime::ReplayOptions options = replay_options(*loaded);
 

@@ -3,7 +3,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -15,6 +14,8 @@
 
 #include "commands.h"
 #include "io.h"
+#include "lanes.h"
+#include "violations.h"
 #include "sm2/assembler/assembler.h"
 #include "sm2/emu/engine.h"
 #include "sm2/emu/jit.h"
@@ -40,11 +41,6 @@ struct RunOptions {
     std::string engine = "jit";
 };
 
-// An input error: printed as "sm2 run: <message>", exit status 1.
-struct InputError {
-    std::string message;
-};
-
 // Shortest text that reads back to the same value in the run's storage type (float or double).
 template <typename Real>
 std::string format_number(Real v) {
@@ -56,46 +52,19 @@ std::string format_number(Real v) {
     return std::string(buf, end);
 }
 
-template <typename T>
-T parse_number(std::string_view text, const std::string& what) {
-    T value{};
-    std::string_view t = text;
-    if (!t.empty() && t[0] == '+') t.remove_prefix(1);
-    if constexpr (std::is_floating_point_v<T>) {
-        if (t == "inf") return std::numeric_limits<T>::infinity();
-        if (t == "-inf") return -std::numeric_limits<T>::infinity();
-        if (t == "nan") return std::numeric_limits<T>::quiet_NaN();
-    }
-    auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
-    if (ec != std::errc{} || end != t.data() + t.size() || t.empty())
-        throw InputError{"bad number '" + std::string(text) + "' in " + what};
-    return value;
-}
-
-std::vector<std::string_view> split(std::string_view s, char sep) {
-    std::vector<std::string_view> parts;
-    size_t start = 0;
-    while (true) {
-        const size_t at = s.find(sep, start);
-        parts.push_back(s.substr(start, at == std::string_view::npos ? std::string_view::npos : at - start));
-        if (at == std::string_view::npos) return parts;
-        start = at + 1;
-    }
-}
-
 // "c4=1,2,3,4" -> (4, ["1","2","3","4"]) for register letter `letter`.
 std::pair<unsigned, std::vector<std::string_view>> register_assignment(const std::string& arg, std::string_view prefix,
                                                                        unsigned count, const char* option) {
     const size_t eq = arg.find('=');
     const std::string what = std::string(option) + " '" + arg + "'";
     if (eq == std::string::npos || arg.compare(0, prefix.size(), prefix) != 0)
-        throw InputError{"expected " + std::string(prefix) + "N=values in " + what};
+        throw UsageError{"expected " + std::string(prefix) + "N=values in " + what};
     const auto index = parse_number<unsigned>(std::string_view(arg).substr(prefix.size(), eq - prefix.size()), what);
     if (index >= count)
-        throw InputError{std::string(prefix) + std::to_string(index) + " is out of range (" + std::string(prefix) +
+        throw UsageError{std::string(prefix) + std::to_string(index) + " is out of range (" + std::string(prefix) +
                          "0.." + std::string(prefix) + std::to_string(count - 1) + ") in " + what};
     auto values = split(std::string_view(arg).substr(eq + 1), ',');
-    if (values.empty() || values.size() > 4) throw InputError{"expected 1 to 4 values in " + what};
+    if (values.empty() || values.size() > 4) throw UsageError{"expected 1 to 4 values in " + what};
     return {index, values};
 }
 
@@ -108,8 +77,7 @@ std::optional<isa::Program> load_program(const std::string& path) {
         auto decoded = isa::decode_bytes(*bytes);
         if (!decoded.ok()) throw InputError{name + ": " + decoded.error->to_string()};
         const auto violations = isa::validate(*decoded.program);
-        for (const auto& v : violations)
-            std::cerr << name << ": error: [" << isa::rule_name(v.rule) << "] " << v.message << '\n';
+        print_violations(std::cerr, name, *decoded.program, violations);
         if (!violations.empty()) return std::nullopt;
         return std::move(*decoded.program);
     }
@@ -119,27 +87,6 @@ std::optional<isa::Program> load_program(const std::string& path) {
     for (const auto& d : result.diagnostics) std::cerr << d.to_string() << '\n';
     if (!result.ok()) return std::nullopt;
     return std::move(*result.program);
-}
-
-// Where an input register lives in a batch: v# (both shader types) or t# (pixel shaders).
-unsigned input_slot(isa::ShaderVersion version, std::string_view name, const std::string& what) {
-    isa::RegisterType type = isa::RegisterType::Input;
-    std::string_view number = name;
-    if (!name.empty() && name[0] == 'v') {
-        number.remove_prefix(1);
-    } else if (!name.empty() && name[0] == 't' && version.is_pixel()) {
-        type = isa::RegisterType::Texture;
-        number.remove_prefix(1);
-    } else {
-        throw InputError{"unknown input register '" + std::string(name) + "' in " + what +
-                         (version.is_pixel() ? " (pixel shaders read v0, v1, t0..t7)" : " (vertex shaders read v0..v15)")};
-    }
-    const auto index = parse_number<unsigned>(number, what);
-    const isa::RegisterFile* file = isa::find_register_file(version, type, index);
-    const auto slot = emu::register_slot(version.type, type, index);
-    if (!file || index >= file->count || !slot)
-        throw InputError{"input register '" + std::string(name) + "' does not exist in " + version.name()};
-    return *slot;
 }
 
 std::string output_name(unsigned s) {
@@ -159,11 +106,7 @@ std::string output_name(unsigned s) {
 
 // Per-lane input values: (slot, component) -> value, from --input (all lanes) and --lanes CSV.
 struct LaneInputs {
-    struct Value {
-        unsigned slot;
-        unsigned component;
-        double value;
-    };
+    using Value = LaneValue;
     std::vector<Value> all_lanes;
     std::vector<std::vector<Value>> per_lane;
 };
@@ -173,51 +116,20 @@ LaneInputs read_inputs(const RunOptions& o, isa::ShaderVersion version) {
     for (const std::string& arg : o.inputs) {
         const size_t eq = arg.find('=');
         const std::string what = "--input '" + arg + "'";
-        if (eq == std::string::npos) throw InputError{"expected REGISTER=values in " + what};
+        if (eq == std::string::npos) throw UsageError{"expected REGISTER=values in " + what};
         const unsigned s = input_slot(version, std::string_view(arg).substr(0, eq), what);
         const auto values = split(std::string_view(arg).substr(eq + 1), ',');
-        if (values.size() > 4) throw InputError{"expected 1 to 4 values in " + what};
+        if (values.size() > 4) throw UsageError{"expected 1 to 4 values in " + what};
         // Components not given keep the input default (0, 0, 0, 1), like a short vertex element.
         for (unsigned c = 0; c < values.size(); ++c)
             in.all_lanes.push_back({s, c, parse_number<double>(values[c], what)});
     }
     if (o.lanes_csv.empty()) return in;
-    std::ifstream file(o.lanes_csv);
-    if (!file) throw InputError{o.lanes_csv + ": cannot open"};
-    std::string line;
-    if (!std::getline(file, line)) throw InputError{o.lanes_csv + ":1: empty file, expected a header"};
-    std::vector<std::pair<unsigned, unsigned>> columns;  // slot, component
-    for (std::string_view column : split(line, ',')) {
-        while (!column.empty() && (column.back() == '\r' || column.back() == ' ')) column.remove_suffix(1);
-        while (!column.empty() && column.front() == ' ') column.remove_prefix(1);
-        const size_t dot = column.find('.');
-        const std::string what = o.lanes_csv + ":1: column '" + std::string(column) + "'";
-        if (dot == std::string_view::npos || column.size() != dot + 2)
-            throw InputError{what + ": expected REGISTER.COMPONENT, e.g. v0.x"};
-        const std::string_view letters = "xyzw";
-        const size_t component = letters.find(column[dot + 1]);
-        if (component == std::string_view::npos) throw InputError{what + ": component must be x, y, z or w"};
-        columns.emplace_back(input_slot(version, column.substr(0, dot), what), static_cast<unsigned>(component));
-    }
-    unsigned row = 1;
-    while (std::getline(file, line)) {
-        ++row;
-        if (line.empty() || line == "\r") continue;
-        const auto cells = split(line, ',');
-        const std::string where = o.lanes_csv + ":" + std::to_string(row);
-        if (cells.size() != columns.size())
-            throw InputError{where + ": " + std::to_string(cells.size()) + " values for " +
-                             std::to_string(columns.size()) + " columns"};
-        std::vector<LaneInputs::Value> lane;
-        for (size_t k = 0; k < cells.size(); ++k) {
-            std::string_view cell = cells[k];
-            while (!cell.empty() && (cell.back() == '\r' || cell.back() == ' ')) cell.remove_suffix(1);
-            while (!cell.empty() && cell.front() == ' ') cell.remove_prefix(1);
-            lane.push_back({columns[k].first, columns[k].second, parse_number<double>(cell, where)});
-        }
-        in.per_lane.push_back(std::move(lane));
-    }
-    if (in.per_lane.empty()) throw InputError{o.lanes_csv + ": no lanes after the header"};
+    std::string error;
+    const auto bytes = read_input(o.lanes_csv, error);
+    if (!bytes) throw InputError{error};
+    in.per_lane = parse_lanes_csv({reinterpret_cast<const char*>(bytes->data()), bytes->size()},
+                                  display_name(o.lanes_csv), version);
     return in;
 }
 
@@ -347,9 +259,9 @@ std::unique_ptr<BoundTextures> bind_textures(const RunOptions& o) {
         const size_t eq = arg.find('=');
         const std::string what = "--texture '" + arg + "'";
         if (eq == std::string::npos || arg.empty() || arg[0] != 's')
-            throw InputError{"expected sN=FILE in " + what};
+            throw UsageError{"expected sN=FILE in " + what};
         const auto stage = parse_number<unsigned>(std::string_view(arg).substr(1, eq - 1), what);
-        if (stage >= runtime::TextureSampler::kStages) throw InputError{"sampler s" + std::to_string(stage) + " does not exist (s0..s15) in " + what};
+        if (stage >= runtime::TextureSampler::kStages) throw UsageError{"sampler s" + std::to_string(stage) + " does not exist (s0..s15) in " + what};
         try {
             bound->textures.push_back(std::make_unique<runtime::Texture>(runtime::load_texture(arg.substr(eq + 1))));
         } catch (const runtime::TextureIoError& e) {
@@ -361,25 +273,25 @@ std::unique_ptr<BoundTextures> bind_textures(const RunOptions& o) {
         const std::string what = "--sampler-state '" + arg + "'";
         const size_t dot = arg.find('.'), eq = arg.find('=');
         if (arg.empty() || arg[0] != 's' || dot == std::string::npos || eq == std::string::npos || eq < dot)
-            throw InputError{"expected sN.STATE=VALUE in " + what};
+            throw UsageError{"expected sN.STATE=VALUE in " + what};
         const auto stage = parse_number<unsigned>(std::string_view(arg).substr(1, dot - 1), what);
-        if (stage >= runtime::TextureSampler::kStages) throw InputError{"sampler s" + std::to_string(stage) + " does not exist (s0..s15) in " + what};
+        if (stage >= runtime::TextureSampler::kStages) throw UsageError{"sampler s" + std::to_string(stage) + " does not exist (s0..s15) in " + what};
         const std::string_view name = std::string_view(arg).substr(dot + 1, eq - dot - 1);
         const std::string_view text = std::string_view(arg).substr(eq + 1);
         const runtime::StateInfo* info = runtime::find_sampler_state(name);
-        if (!info) throw InputError{"unknown sampler state '" + std::string(name) + "' in " + what};
+        if (!info) throw UsageError{"unknown sampler state '" + std::string(name) + "' in " + what};
         uint32_t value = 0;
         switch (info->kind) {
         case runtime::StateValueKind::Enum: {
             auto v = runtime::enum_value(info->family, text);
-            if (!v) throw InputError{"'" + std::string(text) + "' is not a " + std::string(runtime::enum_prefix(info->family)) + "* value in " + what};
+            if (!v) throw UsageError{"'" + std::string(text) + "' is not a " + std::string(runtime::enum_prefix(info->family)) + "* value in " + what};
             value = *v;
             break;
         }
         case runtime::StateValueKind::Bool:
             if (text == "TRUE" || text == "true" || text == "1") value = 1;
             else if (text == "FALSE" || text == "false" || text == "0") value = 0;
-            else throw InputError{"expected TRUE or FALSE in " + what};
+            else throw UsageError{"expected TRUE or FALSE in " + what};
             break;
         case runtime::StateValueKind::Float:
             value = std::bit_cast<uint32_t>(parse_number<float>(text, what));
@@ -387,7 +299,7 @@ std::unique_ptr<BoundTextures> bind_textures(const RunOptions& o) {
         default:
             if (text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X')) {
                 auto [end, ec] = std::from_chars(text.data() + 2, text.data() + text.size(), value, 16);
-                if (ec != std::errc{} || end != text.data() + text.size()) throw InputError{"bad number '" + std::string(text) + "' in " + what};
+                if (ec != std::errc{} || end != text.data() + text.size()) throw UsageError{"bad number '" + std::string(text) + "' in " + what};
             } else {
                 value = parse_number<uint32_t>(text, what);
             }
@@ -416,10 +328,10 @@ int run_shader(const RunOptions& o) {
     }
     for (const std::string& arg : o.booleans) {
         auto [index, values] = register_assignment(arg, "b", emu::kBoolConstants, "--bool");
-        if (values.size() != 1) throw InputError{"expected one value in --bool '" + arg + "'"};
+        if (values.size() != 1) throw UsageError{"expected one value in --bool '" + arg + "'"};
         if (values[0] == "true" || values[0] == "1") flow.booleans[index] = true;
         else if (values[0] == "false" || values[0] == "0") flow.booleans[index] = false;
-        else throw InputError{"expected true or false in --bool '" + arg + "'"};
+        else throw UsageError{"expected true or false in --bool '" + arg + "'"};
     }
     const LaneInputs inputs = read_inputs(o, version);
     auto textures = bind_textures(o);
@@ -485,6 +397,9 @@ void add_run_command(CLI::App& app, int& status) {
         } catch (const InputError& e) {
             std::cerr << "sm2 run: " << e.message << '\n';
             status = kInvalidInput;
+        } catch (const UsageError& e) {
+            std::cerr << "sm2 run: " << e.message << '\n';
+            status = kBadUsage;
         }
     });
 }

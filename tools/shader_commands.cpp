@@ -14,6 +14,7 @@
 
 #include "commands.h"
 #include "io.h"
+#include "violations.h"
 #include "sm2/assembler/assembler.h"
 #include "sm2/assembler/disassembler.h"
 #include "sm2/isa/bytecode.h"
@@ -117,6 +118,23 @@ bool looks_like_assembly(const std::vector<std::byte>& bytes) {
     return !isa::looks_like_bytecode(bytes) && !parse_hex_words(as_text(bytes));
 }
 
+// Empty when `name` is a C identifier that is not a keyword (it is written into C source).
+std::string c_identifier_error(const std::string& name) {
+    static constexpr std::string_view kKeywords[] = {
+        "auto", "break", "case", "char", "const", "continue", "default", "do", "double", "else", "enum",
+        "extern", "float", "for", "goto", "if", "inline", "int", "long", "register", "restrict", "return",
+        "short", "signed", "sizeof", "static", "struct", "switch", "typedef", "union", "unsigned", "void",
+        "volatile", "while", "_Bool", "_Complex", "_Imaginary", "bool", "true", "false"};
+    const bool ok = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
+                    std::all_of(name.begin(), name.end(), [](char c) {
+                        return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                    });
+    if (!ok) return "'" + name + "' is not a C identifier (letters, digits and '_', not starting with a digit)";
+    for (std::string_view k : kKeywords)
+        if (name == k) return "'" + name + "' is a C keyword";
+    return {};
+}
+
 struct AsmOptions {
     std::string input;
     std::string output = "-";
@@ -189,9 +207,17 @@ int run_dis(const std::string& input, const std::string& output) {
         std::cerr << "sm2 dis: " << error << '\n';
         return kInvalidInput;
     }
-    auto program = load_bytecode(display_name(input), *bytes);
+    const std::string name = display_name(input);
+    auto program = load_bytecode(name, *bytes);
     if (!program) return kInvalidInput;
-    if (!write_output(output, assembler::disassemble(*program), error)) {
+    // Only text that assembles back to the same bytes is written.
+    const assembler::CheckedDisassembly dis = assembler::disassemble_checked(*program);
+    if (dis.error) {
+        std::cerr << name << ": token " << dis.error->token_offset << " (byte 0x" << std::hex
+                  << dis.error->token_offset * 4 << std::dec << "): error: " << dis.error->message << '\n';
+        return kInvalidInput;
+    }
+    if (!write_output(output, dis.text, error)) {
         std::cerr << "sm2 dis: " << error << '\n';
         return kInvalidInput;
     }
@@ -222,20 +248,7 @@ int run_validate(const std::string& input, unsigned max_slots) {
     auto program = load_bytecode(name, *bytes);
     if (!program) return kInvalidInput;
     const auto violations = isa::validate(*program, validation);
-    for (const auto& v : violations) {
-        std::cerr << name;
-        if (v.instruction < program->instructions.size()) {
-            const auto& ins = program->instructions[v.instruction];
-            std::cerr << ": token " << ins.token_offset << " (byte 0x" << std::hex
-                      << ins.token_offset * 4 << std::dec << ")";
-        }
-        std::cerr << ": error: [" << isa::rule_name(v.rule) << "] " << v.message << '\n';
-        if (v.instruction < program->instructions.size())
-            std::cerr << "    "
-                      << assembler::format_instruction(program->version,
-                                                       program->instructions[v.instruction])
-                      << '\n';
-    }
+    print_violations(std::cerr, name, *program, violations);
     if (!violations.empty()) return kInvalidInput;
     std::cout << name << ": valid " << program->version.name() << '\n';
     return kOk;
@@ -253,7 +266,8 @@ void add_shader_commands(CLI::App& app, int& status) {
                         "bin (raw little-endian DWORDs, the default with -o FILE), hex (words as text, the default on "
                         "stdout) or c (a C array)")
         ->check(CLI::IsMember({"bin", "hex", "c"}));
-    asm_cmd->add_option("--name", asm_options->array_name, "Array name for --format c");
+    asm_cmd->add_option("--name", asm_options->array_name, "Array name for --format c (a C identifier)")
+        ->check(CLI::Validator(c_identifier_error, "C identifier", "C identifier"));
     asm_cmd->add_flag("--no-validate", asm_options->no_validate,
                       "Encode without running the validator (as Wine's assembler does)");
     asm_cmd->add_option("--max-slots", asm_options->max_slots,

@@ -16,7 +16,7 @@ namespace {
 namespace cs = runtime::cs;
 
 // Binary goes to a file: without -o, IN.sm2cb beside IN; '-o -' (stdout) is refused.
-int run_pack(const std::string& input, std::string output) {
+int run_pack(const std::string& input, std::string output, const std::string& read_root) {
     if (output == "-") {
         std::cerr << "sm2 cs pack: the binary form goes to a file: use -o FILE (sm2 cs dump prints text)\n";
         return kBadUsage;
@@ -32,7 +32,7 @@ int run_pack(const std::string& input, std::string output) {
             return kBadUsage;
         }
     }
-    auto loaded = load_stream(input, "cs");
+    auto loaded = load_stream(input, "cs", read_root);
     if (!loaded) return kInvalidInput;
     const cs::Stream& stream = loaded->stream;
     std::string error;
@@ -43,8 +43,8 @@ int run_pack(const std::string& input, std::string output) {
     return kOk;
 }
 
-int run_dump(const std::string& input, const std::string& output) {
-    auto loaded = load_stream(input, "cs");
+int run_dump(const std::string& input, const std::string& output, const std::string& read_root) {
+    auto loaded = load_stream(input, "cs", read_root);
     if (!loaded) return kInvalidInput;
     const cs::Stream& stream = loaded->stream;
     std::string error;
@@ -66,14 +66,18 @@ void add_stream_commands(CLI::App& app, int& status) {
     auto* pack_cmd = cs_cmd->add_subcommand("pack", "Text (.sm2cs) to binary (.sm2cb)");
     pack_cmd->add_option("input", *pack_in, "Stream, text or binary ('-' for stdin)")->required();
     pack_cmd->add_option("-o,--output", *pack_out, "Binary output file (default: the input's name with .sm2cb)");
-    pack_cmd->callback([pack_in, pack_out, &status] { status = run_pack(*pack_in, *pack_out); });
+    auto pack_root = std::make_shared<std::string>();
+    add_read_root_option(*pack_cmd, *pack_root);
+    pack_cmd->callback([pack_in, pack_out, pack_root, &status] { status = run_pack(*pack_in, *pack_out, *pack_root); });
 
     auto dump_in = std::make_shared<std::string>();
     auto dump_out = std::make_shared<std::string>("-");
     auto* dump_cmd = cs_cmd->add_subcommand("dump", "Binary (or text) to canonical text");
     dump_cmd->add_option("input", *dump_in, "Stream, binary or text ('-' for stdin)")->required();
     dump_cmd->add_option("-o,--output", *dump_out, "Text output file ('-' for stdout, the default)");
-    dump_cmd->callback([dump_in, dump_out, &status] { status = run_dump(*dump_in, *dump_out); });
+    auto dump_root = std::make_shared<std::string>();
+    add_read_root_option(*dump_cmd, *dump_root);
+    dump_cmd->callback([dump_in, dump_out, dump_root, &status] { status = run_dump(*dump_in, *dump_out, *dump_root); });
 }
 
 }  // namespace sm2::tools

@@ -1,6 +1,12 @@
 // Program -> text the assembler reads back into the same bytes.
 #include "sm2/assembler/disassembler.h"
 
+#include <algorithm>
+#include <vector>
+
+#include "sm2/assembler/assembler.h"
+#include "sm2/isa/bytecode.h"
+
 #include "sm2/isa/opcodes.h"
 #include "sm2/isa/registers.h"
 #include "syntax.h"
@@ -163,6 +169,65 @@ std::string disassemble(const isa::Program& program) {
         out += '\n';
     }
     return out;
+}
+
+namespace {
+
+// The token slice of each statement but comment blocks: [token_offset, next statement's offset).
+std::vector<std::vector<uint32_t>> statement_tokens(const isa::Program& program, const std::vector<uint32_t>& tokens,
+                                                    std::vector<size_t>* indices) {
+    std::vector<std::vector<uint32_t>> out;
+    const auto& ins = program.instructions;
+    for (size_t i = 0; i < ins.size(); ++i) {
+        const size_t begin = ins[i].token_offset;
+        const size_t end = i + 1 < ins.size() ? ins[i + 1].token_offset : tokens.size() - 1;  // END
+        if (ins[i].opcode == isa::Opcode::Comment) continue;
+        out.emplace_back(tokens.begin() + static_cast<std::ptrdiff_t>(std::min(begin, tokens.size())),
+                         tokens.begin() + static_cast<std::ptrdiff_t>(std::min(std::max(begin, end), tokens.size())));
+        if (indices) indices->push_back(i);
+    }
+    return out;
+}
+
+}  // namespace
+
+CheckedDisassembly disassemble_checked(const isa::Program& program) {
+    CheckedDisassembly result;
+    result.text = disassemble(program);
+    const auto& ins = program.instructions;
+    auto fail_at = [&](size_t i, const std::string& why) {
+        const uint32_t offset = i < ins.size() ? ins[i].token_offset : 0;
+        const std::string text = i < ins.size() ? format_instruction(program.version, ins[i]) : std::string();
+        result.error = DisassemblyError{offset, "'" + text + "' " + why};
+        return result;
+    };
+    AssembleOptions options;
+    options.validate = false;
+    const AssembleResult again = assemble(result.text, options);
+    if (!again.ok()) {
+        // Line 1 is the version; statement i is on line i + 2.
+        for (const Diagnostic& d : again.diagnostics)
+            if (d.line >= 2 && d.line - 2 < ins.size())
+                return fail_at(d.line - 2, "does not assemble: " + d.message);
+        result.error = DisassemblyError{0, "the text does not assemble"};
+        return result;
+    }
+    std::vector<size_t> indices;
+    const auto original = statement_tokens(program, isa::encode(program), &indices);
+    // Token offsets come from the decoder (an assembled Program does not carry them).
+    const isa::DecodeResult decoded = isa::decode(again.tokens);
+    if (!decoded.ok()) {
+        result.error = DisassemblyError{0, "the text assembles to bytecode that does not decode"};
+        return result;
+    }
+    const auto back = statement_tokens(*decoded.program, again.tokens, nullptr);
+    for (size_t k = 0; k < original.size(); ++k) {
+        if (k >= back.size() || original[k] != back[k])
+            return fail_at(indices[k], "assembles to different bytes (a value or register text cannot express, or "
+                                       "a statement the assembler would place elsewhere)");
+    }
+    if (back.size() != original.size()) result.error = DisassemblyError{0, "the text assembles to more statements"};
+    return result;
 }
 
 }  // namespace sm2::assembler

@@ -164,7 +164,9 @@ private:
             const std::string lower = syntax::to_lower(t.text);
             if (isa::find_mnemonic(lower.substr(0, lower.find('_')))) return;
         }
-        fail(t, "unexpected " + describe(t) + " after the end of the statement");
+        // describe() already says "unexpected character(s)" for an invalid token.
+        fail(t, (t.kind == TokenKind::Invalid ? describe(t) : "unexpected " + describe(t)) +
+                    " after the end of the statement");
     }
 
     // --- version ------------------------------------------------------------------------
@@ -270,15 +272,19 @@ private:
             d.centroid = modifiers.centroid;
             ins.dest = d;
         }
+        size_t extra_sources = 0;
         if (info->num_sources > 0) {
             constexpr size_t kMaxOperands = 4;
             if (!info->has_dest()) ins.sources.push_back(parse_source());
-            while (peek().kind == TokenKind::Comma && ins.sources.size() < kMaxOperands) {
+            // Operands past the fourth are parsed and counted (for the message), not kept.
+            while (peek().kind == TokenKind::Comma) {
                 advance();
-                ins.sources.push_back(parse_source());
+                isa::SourceParameter src = parse_source();
+                if (ins.sources.size() < kMaxOperands) ins.sources.push_back(src);
+                else ++extra_sources;
             }
         }
-        const size_t n = ins.sources.size();
+        const size_t n = ins.sources.size() + extra_sources;
         // ps sincos: Wine writes the one-source form, Microsoft the documented three-source
         // form; both are accepted in pixel shaders (vertex shaders need all three).
         const bool short_form_ok = version_.is_pixel() && info->min_sources < info->num_sources;

@@ -4,11 +4,9 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 
 #include "half.h"
+#include "sm2/runtime/file_io.h"
 #include "sm2/runtime/command_stream.h"
 
 namespace sm2::runtime::cs {
@@ -312,9 +310,14 @@ private:
             if (peek() != '"') return fail("expected a quoted file name after '@'");
             v.kind = Value::Kind::SideFile;
             if (!parse_string(v.text)) return false;
-            auto bytes = options_.side_files ? options_.side_files(options_.base_dir, v.text) : std::nullopt;
+            std::string why = "side files are not read here";
+            auto bytes = options_.side_files ? options_.side_files(options_.root_dir.empty() ? options_.base_dir
+                                                                                             : options_.root_dir,
+                                                                   options_.base_dir, v.text, why)
+                                             : std::nullopt;
             if (!bytes) {
-                error_ = ParseError{options_.file_name, line_, col, pos_, "cannot read side file '" + v.text + "'"};
+                error_ = ParseError{options_.file_name, line_, col, pos_,
+                                    "cannot read side file '" + v.text + "': " + why};
                 return false;
             }
             v.bytes = std::move(*bytes);
@@ -586,14 +589,18 @@ std::string ParseError::to_string() const {
     return s + ": error: " + message;
 }
 
-std::optional<std::vector<std::byte>> read_side_file(const std::string& base_dir, const std::string& path) {
-    const std::filesystem::path full = std::filesystem::path(base_dir) / path;
-    std::ifstream in(full, std::ios::binary);
-    if (!in) return std::nullopt;
-    std::vector<char> chars((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) return std::nullopt;
-    std::vector<std::byte> bytes(chars.size());
-    if (!chars.empty()) std::memcpy(bytes.data(), chars.data(), chars.size());
+std::optional<std::vector<std::byte>> read_side_file(const std::string& root_dir, const std::string& base_dir,
+                                                     const std::string& path, std::string& error) {
+    const auto full = resolve_inside(root_dir, base_dir, path, error);
+    if (!full) return std::nullopt;
+    std::string why;
+    auto bytes = read_file_limited(*full, kMaxInputFileBytes, why);
+    if (!bytes) {
+        // read_file_limited names the resolved path; the stream's own spelling is already in
+        // the message, so keep only the reason.
+        const std::string prefix = *full + ": ";
+        error = why.compare(0, prefix.size(), prefix) == 0 ? why.substr(prefix.size()) : why;
+    }
     return bytes;
 }
 

@@ -6,12 +6,15 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <filesystem>
+#include <new>
 #include <string>
 #include <utility>
 
 #include "device_internal.h"
 #include "worker_pool.h"
 #include "sm2/isa/validator.h"
+#include "sm2/runtime/file_io.h"
 #include "sm2/runtime/image_io.h"
 #include "sm2/runtime/texture_io.h"
 
@@ -29,7 +32,39 @@ bool is_render_target_format(Format format) {
     return info && info->render_target && info->kind != FormatKind::Depth;
 }
 
+// Bytes of `levels` levels (0: the full chain) of `faces` faces of a texture of this format and
+// size, as Texture stores them (DXTn by 4x4 blocks); 0 for an unknown format. The sizes are at
+// most D3D9's limits when this is called, so nothing overflows 64 bits.
+uint64_t texture_bytes(Format format, uint32_t width, uint32_t height, uint32_t depth, uint32_t faces,
+                       uint32_t levels) {
+    const FormatInfo* info = format_info(format);
+    if (info == nullptr) return 0;
+    if (levels == 0) levels = Texture::full_chain(width, height, depth);
+    uint64_t total = 0;
+    for (uint32_t l = 0; l < levels && l < 32; ++l) {
+        const uint64_t w = Texture::level_size(width, l), h = Texture::level_size(height, l),
+                       d = Texture::level_size(depth, l);
+        total += info->kind == FormatKind::Compressed ? (w + 3) / 4 * ((h + 3) / 4) * d * info->bytes
+                                                      : w * h * d * info->bytes;
+    }
+    return total * faces;
+}
+
+bool within(uint32_t size, uint32_t limit) { return size >= 1 && size <= limit; }
+
+// Depth-stencil surfaces keep a 32-bit depth and an 8-bit stencil per pixel.
+constexpr uint64_t kDepthStencilBytesPerPixel = 5;
+
 }  // namespace
+
+const char* call_error_name(CallError error) {
+    switch (error) {
+    case CallError::InvalidCall: return "D3DERR_INVALIDCALL";
+    case CallError::OutOfVideoMemory: return "D3DERR_OUTOFVIDEOMEMORY";
+    case CallError::OutOfMemory: return "E_OUTOFMEMORY";
+    }
+    return "D3DERR_INVALIDCALL";
+}
 
 Device::Device(DeviceOptions options) : options_(std::move(options)) {
     vs_f_.assign(kMaxVertexShaderConstantsF, {0.0f, 0.0f, 0.0f, 0.0f});
@@ -46,9 +81,25 @@ std::shared_ptr<Device::Resource> Device::find(const std::string& name) const {
     return it == resources_.end() ? nullptr : it->second;
 }
 
+CallResult Device::reserve_memory(const std::string& what, uint64_t bytes) const {
+    if (bytes <= options_.memory_limit && memory_used_ <= options_.memory_limit - bytes) return {};
+    return CallResult::fail(what + " needs " + std::to_string(bytes) + " bytes; " +
+                                std::to_string(memory_used_) + " of the " + std::to_string(options_.memory_limit) +
+                                "-byte memory limit are in use",
+                            CallError::OutOfVideoMemory);
+}
+
 CallResult Device::add_resource(const std::string& name, std::shared_ptr<Resource> resource) {
     if (name.empty() || name == "NULL") return CallResult::fail("'" + name + "' is not a usable resource name");
     if (resources_.count(name)) return CallResult::fail("a resource named '" + name + "' already exists");
+    Resource& r = *resource;
+    uint64_t bytes = r.bytes.size() + r.surface.bytes().size();
+    for (uint32_t f = 0; f < r.texture.faces() && r.texture.levels() > 0; ++f)
+        for (uint32_t l = 0; l < r.texture.levels(); ++l) bytes += r.texture.surface(l, f).bytes().size();
+    if (r.depth) bytes += uint64_t{r.depth->width()} * r.depth->height() * kDepthStencilBytesPerPixel;
+    if (auto refused = reserve_memory("'" + name + "'", bytes); !refused) return refused;
+    r.memory_bytes = bytes;
+    memory_used_ += bytes;
     resources_.emplace(name, std::move(resource));
     return {};
 }
@@ -72,6 +123,10 @@ CallResult Device::create_device(uint32_t width, uint32_t height, Format format,
         return CallResult::fail("CreateDevice: " + format_name(format) + " is not a render-target format");
     if (resources_.count("backbuffer") || (depth_format && resources_.count("autodepth")))
         return CallResult::fail("CreateDevice: the names 'backbuffer'/'autodepth' are taken");
+    const uint64_t back_bytes = texture_bytes(format, width, height, 1, 1, 1);
+    const uint64_t depth_bytes = depth_format ? uint64_t{width} * height * kDepthStencilBytesPerPixel : 0;
+    if (auto refused = reserve_memory("CreateDevice: the back buffer", back_bytes + depth_bytes); !refused)
+        return refused;
     std::shared_ptr<Resource> depth;
     if (depth_format) {
         auto created = DepthStencilSurface::create(*depth_format, width, height);
@@ -79,10 +134,13 @@ CallResult Device::create_device(uint32_t width, uint32_t height, Format format,
         depth = std::make_shared<Resource>();
         depth->kind = Resource::Kind::DepthStencil;
         depth->depth = std::move(created.surface);
+        depth->memory_bytes = depth_bytes;
     }
     auto back = std::make_shared<Resource>();
     back->kind = Resource::Kind::RenderTarget;
     back->surface = Surface(format, width, height);
+    back->memory_bytes = back->surface.bytes().size();
+    memory_used_ += back->memory_bytes + depth_bytes;
     resources_.emplace("backbuffer", back);
     back_buffer_ = back;
     render_targets_[0] = back;
@@ -99,6 +157,7 @@ CallResult Device::create_device(uint32_t width, uint32_t height, Format format,
 
 CallResult Device::create_vertex_buffer(const std::string& name, uint32_t length) {
     if (length == 0 || length > (1u << 30)) return CallResult::fail("CreateVertexBuffer: length " + std::to_string(length) + " is out of range");
+    if (auto refused = reserve_memory("CreateVertexBuffer: '" + name + "'", length); !refused) return refused;
     auto r = std::make_shared<Resource>();
     r->kind = Resource::Kind::VertexBuffer;
     r->bytes.assign(length, std::byte{0});
@@ -109,6 +168,7 @@ CallResult Device::create_index_buffer(const std::string& name, uint32_t length,
     if (format != Format::INDEX16 && format != Format::INDEX32)
         return CallResult::fail("CreateIndexBuffer: " + format_name(format) + " is not INDEX16 or INDEX32");
     if (length == 0 || length > (1u << 30)) return CallResult::fail("CreateIndexBuffer: length " + std::to_string(length) + " is out of range");
+    if (auto refused = reserve_memory("CreateIndexBuffer: '" + name + "'", length); !refused) return refused;
     auto r = std::make_shared<Resource>();
     r->kind = Resource::Kind::IndexBuffer;
     r->bytes.assign(length, std::byte{0});
@@ -121,11 +181,18 @@ CallResult Device::create_texture(const std::string& name, uint32_t width, uint3
     if (resources_.count(name)) return CallResult::fail("a resource named '" + name + "' already exists");
     if (render_target && !is_render_target_format(format))
         return CallResult::fail("CreateTexture: " + format_name(format) + " cannot be a render target");
+    if (within(width, Texture::kMaxSize2D) && within(height, Texture::kMaxSize2D))
+        if (auto refused = reserve_memory("CreateTexture: '" + name + "'",
+                                          texture_bytes(format, width, height, 1, 1, levels));
+            !refused)
+            return refused;
     auto r = std::make_shared<Resource>();
     r->kind = Resource::Kind::Texture;
     r->render_target_usage = render_target;
     try {
         r->texture = Texture::create_2d(format, width, height, levels);
+    } catch (const std::bad_alloc&) {
+        return CallResult::fail("CreateTexture: out of host memory", CallError::OutOfMemory);
     } catch (const std::exception& e) {
         return CallResult::fail(std::string("CreateTexture: ") + e.what());
     }
@@ -137,11 +204,18 @@ CallResult Device::create_cube_texture(const std::string& name, uint32_t edge, u
     if (resources_.count(name)) return CallResult::fail("a resource named '" + name + "' already exists");
     if (render_target && !is_render_target_format(format))
         return CallResult::fail("CreateCubeTexture: " + format_name(format) + " cannot be a render target");
+    if (within(edge, Texture::kMaxSize2D))
+        if (auto refused = reserve_memory("CreateCubeTexture: '" + name + "'",
+                                          texture_bytes(format, edge, edge, 1, 6, levels));
+            !refused)
+            return refused;
     auto r = std::make_shared<Resource>();
     r->kind = Resource::Kind::Texture;
     r->render_target_usage = render_target;
     try {
         r->texture = Texture::create_cube(format, edge, levels);
+    } catch (const std::bad_alloc&) {
+        return CallResult::fail("CreateCubeTexture: out of host memory", CallError::OutOfMemory);
     } catch (const std::exception& e) {
         return CallResult::fail(std::string("CreateCubeTexture: ") + e.what());
     }
@@ -151,10 +225,18 @@ CallResult Device::create_cube_texture(const std::string& name, uint32_t edge, u
 CallResult Device::create_volume_texture(const std::string& name, uint32_t width, uint32_t height,
                                          uint32_t depth, uint32_t levels, Format format) {
     if (resources_.count(name)) return CallResult::fail("a resource named '" + name + "' already exists");
+    if (within(width, Texture::kMaxSizeVolume) && within(height, Texture::kMaxSizeVolume) &&
+        within(depth, Texture::kMaxSizeVolume))
+        if (auto refused = reserve_memory("CreateVolumeTexture: '" + name + "'",
+                                          texture_bytes(format, width, height, depth, 1, levels));
+            !refused)
+            return refused;
     auto r = std::make_shared<Resource>();
     r->kind = Resource::Kind::Texture;
     try {
         r->texture = Texture::create_volume(format, width, height, depth, levels);
+    } catch (const std::bad_alloc&) {
+        return CallResult::fail("CreateVolumeTexture: out of host memory", CallError::OutOfMemory);
     } catch (const std::exception& e) {
         return CallResult::fail(std::string("CreateVolumeTexture: ") + e.what());
     }
@@ -167,6 +249,9 @@ CallResult Device::create_render_target(const std::string& name, uint32_t width,
                                 " is out of range");
     if (!is_render_target_format(format))
         return CallResult::fail("CreateRenderTarget: " + format_name(format) + " is not a render-target format");
+    if (auto refused = reserve_memory("CreateRenderTarget: '" + name + "'", texture_bytes(format, width, height, 1, 1, 1));
+        !refused)
+        return refused;
     auto r = std::make_shared<Resource>();
     r->kind = Resource::Kind::RenderTarget;
     r->surface = Surface(format, width, height);
@@ -176,6 +261,11 @@ CallResult Device::create_render_target(const std::string& name, uint32_t width,
 CallResult Device::create_depth_stencil_surface(const std::string& name, uint32_t width, uint32_t height,
                                                 Format format) {
     if (resources_.count(name)) return CallResult::fail("a resource named '" + name + "' already exists");
+    if (within(width, Texture::kMaxSize2D) && within(height, Texture::kMaxSize2D))
+        if (auto refused = reserve_memory("CreateDepthStencilSurface: '" + name + "'",
+                                          uint64_t{width} * height * kDepthStencilBytesPerPixel);
+            !refused)
+            return refused;
     auto created = DepthStencilSurface::create(format, width, height);
     if (!created.surface) return CallResult::fail("CreateDepthStencilSurface: " + created.error);
     auto r = std::make_shared<Resource>();
@@ -281,6 +371,8 @@ CallResult Device::load_texture(const std::string& name, const std::string& path
     r->kind = Resource::Kind::Texture;
     try {
         r->texture = runtime::load_texture(path, TextureLoadOptions{generate_mips});
+    } catch (const std::bad_alloc&) {
+        return CallResult::fail("LoadTexture: out of host memory", CallError::OutOfMemory);
     } catch (const std::exception& e) {
         return CallResult::fail(std::string("LoadTexture: ") + e.what());
     }
@@ -304,6 +396,7 @@ CallResult Device::generate_mip_sub_levels(const std::string& texture) {
 CallResult Device::release(const std::string& name) {
     auto it = resources_.find(name);
     if (it == resources_.end()) return CallResult::fail("Release: no resource named '" + name + "'");
+    memory_used_ -= std::min(memory_used_, it->second->memory_bytes);
     resources_.erase(it);
     return {};
 }
@@ -575,8 +668,17 @@ CallResult Device::set_max_instruction_slots(uint32_t slots) {
 CallResult Device::save_surface(const std::string& name, const std::string& path) {
     const Surface* s = surface(name);
     if (!s) return CallResult::fail("SaveSurface: '" + name + "' is not a surface or texture");
-    std::string full = path;
-    if (!options_.output_dir.empty() && !path.empty() && path[0] != '/') full = options_.output_dir + "/" + path;
+    // Inside the output folder only (the working folder when there is none): no absolute path,
+    // no `..` or symbolic link leaving it.
+    std::string error;
+    const std::string root = options_.output_dir.empty() ? std::string(".") : options_.output_dir;
+    const auto resolved = resolve_inside(root, root, path, error);
+    if (!resolved) return CallResult::fail("SaveSurface: " + error);
+    // Written under the name as given, made lexically normal ("sub/../a.png" is "a.png").
+    const std::string full = (options_.output_dir.empty() ? std::filesystem::path(path)
+                                                          : std::filesystem::path(options_.output_dir) / path)
+                                 .lexically_normal()
+                                 .string();
     try {
         write_file(options_, *s, full);
     } catch (const std::exception& e) {

@@ -42,6 +42,7 @@ struct Device::Resource {
     std::optional<DepthStencilSurface> depth;      // depth-stencil surfaces
     std::vector<VertexElement> elements;           // declarations
     std::shared_ptr<ShaderObject> shader;          // shaders
+    uint64_t memory_bytes = 0;                     // counted against the memory limit while named
 };
 
 }  // namespace sm2::runtime

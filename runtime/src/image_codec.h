@@ -15,7 +15,7 @@
 
 namespace sm2::runtime::image_codec {
 
-constexpr uint32_t kAbiVersion = 1;
+constexpr uint32_t kAbiVersion = 2;
 
 enum class PixelType : int { U8, U16, Half, Float, Other };
 
@@ -32,10 +32,12 @@ struct Functions {
     // Opens `path` for reading, alpha unassociated (values as stored). On failure: nullptr,
     // *status says whether no reader knows the file or the reader failed, *error why.
     void* (*open)(const char* path, Info* info, OpenStatus* status, std::string* error);
-    // Reads subimage 0, level 0, all channels, as float. False and *error on failure.
-    bool (*read)(void* reader, float* pixels, std::string* error);
+    // Reads subimage 0, level 0, the first `channels` channels (1 to Info::channels), as float.
+    // False and *error on failure.
+    bool (*read)(void* reader, int channels, float* pixels, std::string* error);
     void (*close)(void* reader);
-    // Writes RGBA: 8-bit (`rgba` is uint8_t) or float (`rgba` is float), unassociated alpha.
+    // Writes RGBA: 8-bit (`rgba` is uint8_t) or float (`rgba` is float), unassociated alpha, and
+    // no wall-clock time in the file (a fixed DateTime): the same pixels give the same bytes.
     // False and *error ("no writer for this file: ...", "cannot open for writing: ...", "write
     // failed: ...") on failure.
     bool (*write)(const char* path, uint32_t width, uint32_t height, bool eight_bit, const void* rgba,
@@ -55,7 +57,7 @@ public:
     ~Reader() {
         if (handle_) f_->close(handle_);
     }
-    bool read(float* pixels, std::string& error) { return f_->read(handle_, pixels, &error); }
+    bool read(int channels, float* pixels, std::string& error) { return f_->read(handle_, channels, pixels, &error); }
 
 private:
     const Functions* f_;

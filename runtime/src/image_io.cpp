@@ -13,6 +13,8 @@
 #include <limits>
 
 #include "image_codec.h"
+#include "sm2/runtime/file_io.h"
+#include "sm2/runtime/texture_io.h"
 
 namespace sm2::runtime {
 
@@ -128,28 +130,72 @@ void write_surface(const Surface& surface, const std::string& path) {
     write_image(image, path);
 }
 
-Image read_image(const std::string& path) {
+Image read_image(const std::string& path, const ImageReadLimits& limits) {
     if (file_kind(path) == FileKind::Raw)
         fail(path, ".raw files have no header, so their size is unknown; compare .exr files for float data");
+    std::string error;
+    if (!check_input_file(path, kMaxImageFileBytes, error)) throw ImageIoError(error);
+    // Size checks before any pixel is allocated: sides up to limits.max_side (so that w * h
+    // cannot overflow), and w * h RGBA floats within limits.max_bytes.
+    auto check_size = [&](uint64_t w, uint64_t h) {
+        if (w == 0 || h == 0) fail(path, "empty image");
+        if (w > limits.max_side || h > limits.max_side)
+            fail(path, std::to_string(w) + "x" + std::to_string(h) + " is larger than " +
+                           std::to_string(limits.max_side) + " pixels per side");
+        if (w * h > limits.max_bytes / 16)
+            fail(path, std::to_string(w) + "x" + std::to_string(h) + " needs " + std::to_string(w * h * 16) +
+                           " bytes as float RGBA, more than the " + std::to_string(limits.max_bytes) + "-byte limit");
+    };
+    {
+        // DDS files go through the project's own reader (exact bits, every D3DFORMAT; DXTn decoded).
+        std::ifstream in(path, std::ios::binary);
+        char magic[4] = {};
+        in.read(magic, 4);
+        if (in.gcount() == 4 && std::memcmp(magic, "DDS ", 4) == 0) {
+            const auto data = read_file_limited(path, kMaxImageFileBytes, error);
+            if (!data) throw ImageIoError(error);
+            Texture texture;
+            try {
+                texture = load_dds(*data, path);
+            } catch (const TextureIoError& e) {
+                throw ImageIoError(e.what());
+            }
+            if (texture.type() != TextureType::Texture2D) fail(path, "cube and volume DDS files cannot be compared");
+            const Surface& s = texture.surface(0, 0);
+            check_size(s.width(), s.height());
+            Image image;
+            image.width = s.width();
+            image.height = s.height();
+            image.rgba.resize(size_t{image.width} * image.height * 4);
+            for (uint32_t y = 0; y < image.height; ++y)
+                for (uint32_t x = 0; x < image.width; ++x) {
+                    const Float4 v = s.read(x, y, 0);
+                    std::copy(v.begin(), v.end(), image.rgba.begin() + static_cast<std::ptrdiff_t>((size_t{y} * image.width + x) * 4));
+                }
+            return image;
+        }
+    }
     const image_codec::Functions& f = codec(path);
     image_codec::Info spec;
     image_codec::OpenStatus status{};
-    std::string error;
     image_codec::Reader input(&f, f.open(path.c_str(), &spec, &status, &error));
     if (status != image_codec::OpenStatus::Ok) fail(path, "cannot read image: " + error);
     if (spec.width <= 0 || spec.height <= 0 || spec.channels <= 0) fail(path, "empty image");
     if (spec.depth > 1) fail(path, "volume images are not supported");
+    check_size(static_cast<uint64_t>(spec.width), static_cast<uint64_t>(spec.height));
     const auto w = static_cast<uint32_t>(spec.width), h = static_cast<uint32_t>(spec.height);
-    const int channels = spec.channels;
-    std::vector<float> pixels(size_t{w} * h * static_cast<size_t>(channels));
-    if (!input.read(pixels.data(), error)) fail(path, "cannot read pixels: " + error);
-
+    // At most 4 channels are read (a file may declare any number), straight into the RGBA
+    // buffer, then spread out in place: the image costs w * h * 16 bytes and no more.
+    const int channels = std::min(spec.channels, 4);
     Image image;
     image.width = w;
     image.height = h;
     image.rgba.resize(size_t{w} * h * 4);
-    for (size_t i = 0; i < size_t{w} * h; ++i) {
-        const float* p = &pixels[i * static_cast<size_t>(channels)];
+    if (!input.read(channels, image.rgba.data(), error)) fail(path, "cannot read pixels: " + error);
+    const size_t c = static_cast<size_t>(channels);
+    for (size_t i = size_t{w} * h; i-- > 0;) {  // last pixel first: never overwrites unread input
+        float p[4] = {0, 0, 0, 1};
+        std::copy_n(&image.rgba[i * c], c, p);
         float* o = &image.rgba[i * 4];
         if (channels <= 2) {  // grey (and alpha)
             o[0] = o[1] = o[2] = p[0];
@@ -158,7 +204,7 @@ Image read_image(const std::string& path) {
             o[0] = p[0];
             o[1] = p[1];
             o[2] = p[2];
-            o[3] = channels >= 4 ? p[3] : 1.0f;
+            o[3] = channels == 4 ? p[3] : 1.0f;
         }
     }
     return image;

@@ -407,9 +407,9 @@ float fog_factor(const OutputMergerState& s, float vertex_fog, float depth) {
     return saturate(f);
 }
 
-bool alpha_test_passes(const OutputMergerState& s, float alpha) {
+bool alpha_test_passes(const OutputMergerState& s, float alpha, bool target_clamps) {
     if (std::isnan(alpha)) return s.alpha_func == CompareFunc::Always;
-    return compare(s.alpha_func, saturate(alpha), s.alpha_ref);
+    return compare(s.alpha_func, target_clamps ? saturate(alpha) : alpha, s.alpha_ref);
 }
 
 Vec4 blend(const BlendState& b, const Vec4& src_in, const Vec4& dst, bool fixed_point) {
@@ -443,10 +443,13 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
             for (unsigned l = 0; l < kLanes; ++l)
                 color0[c].v[l] = f[l] * color0[c].v[l] + (1.0f - f[l]) * s.fog_color[c];
     }
-    // Alpha test (§10): failing pixels never reach the stencil stage.
-    if (s.alpha_test)
+    // Alpha test (§10): failing pixels never reach the stencil stage. The alpha is clamped only
+    // where render target 0 clamps: a float target tests what the shader wrote.
+    if (s.alpha_test) {
+        const bool clamps = !(targets.color[0] && is_float_target(targets.color[0]->format()));
         for (unsigned l = 0; l < kLanes; ++l)
-            if ((live >> l & 1u) && !alpha_test_passes(s, color0[3].v[l])) live &= ~(emu::LaneMask{1} << l);
+            if ((live >> l & 1u) && !alpha_test_passes(s, color0[3].v[l], clamps)) live &= ~(emu::LaneMask{1} << l);
+    }
     // Stencil, depth, stencil update (§11).
     if (!in.depth_stencil_done)
         live = depth_stencil_test(s.depth_stencil, targets.depth_stencil, lanes.x, lanes.y, depth, live,

@@ -10,14 +10,17 @@
 #include <chrono>
 #include <cstring>
 #include <exception>
-#include <filesystem>
+#include <new>
 #include <limits>
+#include <optional>
 #include <span>
 #include <utility>
 
 #include "sm2/isa/bytecode.h"
 #include "sm2/runtime/d3d9_names.h"
+#include "sm2/runtime/file_io.h"
 #include "sm2/runtime/formats.h"
+#include "sm2/runtime/primitive_assembly.h"
 #include "sm2/runtime/texture.h"
 
 namespace sm2::runtime {
@@ -305,10 +308,31 @@ isa::Program shader_program(Context& c, const Args& args, size_t i) {
     args.wrong_kind(i, "shader", "asm<<TAG text, a side file or a u32[] blob of bytecode");
 }
 
-std::string resolve_path(const ReplayOptions& options, const std::string& path) {
-    if (path.empty() || std::filesystem::path(path).is_absolute() || options.base_dir.empty() || options.base_dir == ".")
-        return path;
-    return (std::filesystem::path(options.base_dir) / path).string();
+// A LoadTexture file name, inside the read root (refused otherwise, as argument `i`).
+std::string resolve_path(const ReplayOptions& options, const Args& args, size_t i, const std::string& path) {
+    std::string error;
+    const std::string base = options.base_dir.empty() ? std::string(".") : options.base_dir;
+    const auto full = resolve_inside(options.root_dir.empty() ? base : options.root_dir, base, path, error);
+    if (!full) args.fail(i, "file", error);
+    return *full;
+}
+
+// A draw's working memory (its vertex numbers, shaded vertices and primitives: about 256 bytes a
+// draw vertex for a vertex shader writing every vs_2_0 output) is checked against the device's
+// memory limit before the Device allocates it: E_OUTOFMEMORY, as D3D9 answers, rather than a
+// std::bad_alloc or the host's memory exhausted by a one-line draw.
+constexpr uint64_t kDrawBytesPerVertex = 256;
+
+std::optional<CallResult> draw_memory(const Context& c, const char* call, uint32_t type, uint32_t primitive_count) {
+    const auto pt = primitive_type_from(type);
+    const auto vertices = pt ? vertices_for(*pt, primitive_count) : std::nullopt;
+    if (!vertices) return std::nullopt;  // not a valid draw: the Device says why
+    const uint64_t bytes = uint64_t{*vertices} * kDrawBytesPerVertex;
+    if (bytes <= c.device.memory_limit()) return std::nullopt;
+    return CallResult::fail(std::string(call) + ": " + std::to_string(*vertices) + " vertices need about " +
+                                std::to_string(bytes) + " bytes of working memory, more than the " +
+                                std::to_string(c.device.memory_limit()) + "-byte memory limit",
+                            CallError::OutOfMemory);
 }
 
 // Viewport, scissor rectangle and clip plane take their numbers either one by one or in a tuple.
@@ -415,7 +439,7 @@ const CallSpec kCalls[] = {
     {"LoadTexture", 2, 3, "name \"file\" [GENERATEMIPS]",
      [](Context& c, const Args& a) {
          if (a.size() == 3) a.flag(2, "option", "GENERATEMIPS", "");
-         return c.device.load_texture(a.identifier(0, "name"), resolve_path(c.options, a.string(1, "file")),
+         return c.device.load_texture(a.identifier(0, "name"), resolve_path(c.options, a, 1, a.string(1, "file")),
                                       a.size() == 3);
      }},
     {"GenerateMipSubLevels", 1, 1, "texture",
@@ -511,21 +535,26 @@ const CallSpec kCalls[] = {
     {"EndScene", 0, 0, "no arguments", [](Context& c, const Args&) { return c.device.end_scene(); }},
     {"DrawPrimitive", 3, 3, "type start_vertex primitive_count",
      [](Context& c, const Args& a) {
-         return c.device.draw_primitive(a.enumeration(0, "primitive type", EnumFamily::PrimitiveType),
-                                        a.u32(1, "start_vertex"), a.u32(2, "primitive_count"));
+         const uint32_t type = a.enumeration(0, "primitive type", EnumFamily::PrimitiveType);
+         const uint32_t start = a.u32(1, "start_vertex"), count = a.u32(2, "primitive_count");
+         if (auto refused = draw_memory(c, "DrawPrimitive", type, count)) return *refused;
+         return c.device.draw_primitive(type, start, count);
      }},
     {"DrawIndexedPrimitive", 6, 6, "type base_vertex min_index num_vertices start_index primitive_count",
      [](Context& c, const Args& a) {
-         return c.device.draw_indexed_primitive(a.enumeration(0, "primitive type", EnumFamily::PrimitiveType),
-                                                a.i32(1, "base_vertex"), a.u32(2, "min_index"),
-                                                a.u32(3, "num_vertices"), a.u32(4, "start_index"),
-                                                a.u32(5, "primitive_count"));
+         const uint32_t type = a.enumeration(0, "primitive type", EnumFamily::PrimitiveType);
+         const int32_t base_vertex = a.i32(1, "base_vertex");
+         const uint32_t min_index = a.u32(2, "min_index"), num_vertices = a.u32(3, "num_vertices");
+         const uint32_t start_index = a.u32(4, "start_index"), count = a.u32(5, "primitive_count");
+         if (auto refused = draw_memory(c, "DrawIndexedPrimitive", type, count)) return *refused;
+         return c.device.draw_indexed_primitive(type, base_vertex, min_index, num_vertices, start_index, count);
      }},
     {"DrawPrimitiveUP", 4, 4, "type primitive_count stride data",
      [](Context& c, const Args& a) {
          const uint32_t type = a.enumeration(0, "primitive type", EnumFamily::PrimitiveType);
          const uint32_t count = a.u32(1, "primitive_count");
          const uint32_t stride = a.u32(2, "stride");
+         if (auto refused = draw_memory(c, "DrawPrimitiveUP", type, count)) return *refused;
          return c.device.draw_primitive_up(type, count, a.bytes(3, "data"), stride);
      }},
     {"DrawIndexedPrimitiveUP", 8, 8,
@@ -539,6 +568,7 @@ const CallSpec kCalls[] = {
          if (format != Format::INDEX16 && format != Format::INDEX32)
              a.fail(5, "index format", "expected INDEX16 or INDEX32, got '" + a.at(5).text + "'");
          const auto vertices = a.bytes(6, "vertex_data");
+         if (auto refused = draw_memory(c, "DrawIndexedPrimitiveUP", type, count)) return *refused;
          return c.device.draw_indexed_primitive_up(type, min_index, num_vertices, count, indices, format, vertices,
                                                    a.u32(7, "stride"));
      }},
@@ -602,7 +632,7 @@ std::string ReplayDiagnostic::to_string() const {
     std::string s = file.empty() ? "<input>" : file;
     if (line > 0) s += ":" + std::to_string(line);
     else if (record > 0) s += ": record " + std::to_string(record);
-    s += ": D3DERR_INVALIDCALL: ";
+    s += std::string(": ") + call_error_name(code) + ": ";
     if (!call.empty()) s += call + ": ";
     return s + message;
 }
@@ -613,6 +643,7 @@ bool Replayer::execute(const cs::Statement& statement, size_t record) {
     if (statement.kind != cs::Statement::Kind::Call) return true;
     Context context{device_, options_, statement.line, statement.line};
     std::string message;
+    CallError code = CallError::InvalidCall;
     if (const CallSpec* spec = find_call(statement.name)) {
         const size_t count = statement.arguments.size();
         if (count < spec->min_args || count > spec->max_args) {
@@ -623,11 +654,17 @@ bool Replayer::execute(const cs::Statement& statement, size_t record) {
                 const CallResult result = spec->run(context, Args(statement.arguments));
                 if (result.ok) return true;
                 message = result.error;
+                code = result.code;
                 // The Device names the call itself; the diagnostic already does.
                 const std::string prefix = statement.name + ": ";
                 if (message.rfind(prefix, 0) == 0) message.erase(0, prefix.size());
             } catch (const ArgumentError& e) {
                 message = e.message;
+            } catch (const std::bad_alloc&) {
+                // What a call needs beyond the resources (a draw's vertices, say) could not be
+                // allocated: E_OUTOFMEMORY, and the replay goes on.
+                message = "out of host memory";
+                code = CallError::OutOfMemory;
             } catch (const std::exception& e) {
                 message = std::string("internal error: ") + e.what();
             }
@@ -636,7 +673,7 @@ bool Replayer::execute(const cs::Statement& statement, size_t record) {
         message = "unknown call";
     }
     diagnostics_.push_back(ReplayDiagnostic{options_.file_name, context.diagnostic_line, record, statement.name,
-                                            std::move(message)});
+                                            std::move(message), code});
     return false;
 }
 

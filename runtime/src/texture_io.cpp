@@ -3,15 +3,16 @@
 #include "sm2/runtime/texture_io.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <iterator>
 #include <memory>
 #include <optional>
 #include <vector>
 
 #include "dxt.h"
 #include "image_codec.h"
+#include "sm2/runtime/file_io.h"
 
 namespace sm2::runtime {
 
@@ -85,20 +86,14 @@ Format dds_format(std::span<const std::byte> d, const std::string& name) {
         const bool colour = kind == kAlpha || (m.r == r && m.g == g && m.b == b);
         if (colour && m.a == alpha) return m.format;
     }
-    fail(name, "unsupported pixel format (flags 0x" + std::to_string(flags) + ", " + std::to_string(bits) + " bits)");
-}
-
-std::vector<std::byte> read_file(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(path, "cannot open");
-    std::vector<char> raw((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    std::vector<std::byte> out(raw.size());
-    if (!raw.empty()) std::memcpy(out.data(), raw.data(), raw.size());
-    return out;
+    char hex[16];
+    std::snprintf(hex, sizeof hex, "%X", flags);
+    fail(name, "unsupported pixel format (flags 0x" + std::string(hex) + ", " + std::to_string(bits) + " bits)");
 }
 
 Texture load_oiio(const std::string& path, const TextureLoadOptions& options) {
     std::string error;
+    if (!check_input_file(path, kMaxImageFileBytes, error)) throw TextureIoError(error);
     const image_codec::Functions* f = image_codec::functions(error);
     if (!f) fail(path, error);
     image_codec::Info spec;
@@ -110,7 +105,9 @@ Texture load_oiio(const std::string& path, const TextureLoadOptions& options) {
     if (spec.depth > 1) fail(path, "volume images are read from DDS files only");
     if (spec.width > static_cast<int>(Texture::kMaxSize2D) || spec.height > static_cast<int>(Texture::kMaxSize2D))
         fail(path, "larger than 4096 texels per side");
-    const int channels = spec.channels;
+    // At most 4 channels are read (an image may declare thousands), so the pixels below take at
+    // most 4096 x 4096 x 4 floats.
+    const int channels = std::min(spec.channels, 4);
     Format format;
     if (spec.type == image_codec::PixelType::U8)
         format = channels == 1 ? Format::L8 : channels == 2 ? Format::A8L8 : Format::A8R8G8B8;
@@ -123,7 +120,7 @@ Texture load_oiio(const std::string& path, const TextureLoadOptions& options) {
 
     const auto w = static_cast<uint32_t>(spec.width), h = static_cast<uint32_t>(spec.height);
     std::vector<float> pixels(size_t{w} * h * static_cast<size_t>(channels));
-    if (!input.read(pixels.data(), error)) fail(path, "cannot read pixels: " + error);
+    if (!input.read(channels, pixels.data(), error)) fail(path, "cannot read pixels: " + error);
 
     const bool mips = options.generate_mips && pow2(w) && pow2(h);
     if (options.generate_mips && !mips) fail(path, "mip generation needs power-of-two sizes");
@@ -195,14 +192,18 @@ Texture load_dds(std::span<const std::byte> d, const std::string& name, const Te
 }
 
 Texture load_texture(const std::string& path, const TextureLoadOptions& options) {
+    // Only regular files of at most kMaxImageFileBytes (not a directory, a FIFO or /dev/zero).
+    std::string error;
+    if (!check_input_file(path, kMaxImageFileBytes, error)) throw TextureIoError(error);
     {
         std::ifstream in(path, std::ios::binary);
         if (!in) fail(path, "cannot open");
         char magic[4] = {};
         in.read(magic, 4);
         if (in.gcount() == 4 && std::memcmp(magic, "DDS ", 4) == 0) {
-            const std::vector<std::byte> data = read_file(path);
-            return load_dds(data, path, options);
+            const auto data = read_file_limited(path, kMaxImageFileBytes, error);
+            if (!data) throw TextureIoError(error);
+            return load_dds(*data, path, options);
         }
     }
     return load_oiio(path, options);

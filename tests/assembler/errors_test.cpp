@@ -103,6 +103,9 @@ TEST(Errors, Modifiers) {
 
 TEST(Errors, Operands) {
     expect_errors("vs_2_0\nmov r0, r1, r2\n", {{2, 1, "'mov' takes 1 source operand, found 2"}});
+    // every operand counted, past the four an instruction can have
+    expect_errors("vs_2_0\nmov r0, r1, r2, r3, r4, r5, r6, r7\n", {{2, 1, "'mov' takes 1 source operand, found 7"}});
+    expect_errors("vs_2_0\nmad r0, r1, r2, r3, r4, r5\n", {{2, 1, "'mad' takes 3 source operands, found 5"}});
     expect_errors("vs_2_0\nsincos r0.xy, r1.x\n", {{2, 1, "'sincos' takes 3 source operands, found 1"}});
     expect_errors("ps_2_0\nsincos r0.xy, r1.x, c0\n", {{2, 1, "'sincos' takes 1 or 3 source operands"}});
     expect_errors("vs_2_0\nret r0\n", {{2, 5, "unexpected 'r0'"}});
@@ -146,6 +149,10 @@ TEST(Errors, Preprocessor) {
     expect_errors("#define\nvs_2_0\n", {{1, 2, "#define needs a macro name"}});
     expect_errors("#line x\nvs_2_0\n", {{1, 7, "#line needs a decimal line number"}});
     expect_errors("vs_2_0\nmov r0, r1 # comment\n", {{2, 12, "unexpected character(s) '#'"}});
+    // the whole message, said once
+    const AssembleResult hash = assemble_unvalidated("vs_2_0\nmov r0, r1 # comment\n");
+    ASSERT_EQ(hash.diagnostics.size(), 1u);
+    EXPECT_EQ(hash.diagnostics[0].message, "unexpected character(s) '#' after the end of the statement");
     expect_errors("vs_2_0\n/* never closed\nmov r0, r1\n", {{2, 1, "unterminated /* comment"}});
 }
 

@@ -229,6 +229,58 @@ TEST(Disassembler, CommentBlocksArePrintedAndSkipped) {
     EXPECT_EQ(hex(assemble_tokens(text)), "FFFF0200 02000001 800F0800 A0E40000 0000FFFF");
 }
 
+// disassemble_checked: what the decoder accepts either comes back through text byte for byte or
+// is refused at its statement.
+TEST(Disassembler, CheckedDisassemblyRoundTripsOrNamesTheStatement) {
+    // Every statement of the corpus and of the samples comes back (comment blocks aside).
+    auto files = corpus_files();
+    for (const auto& f : asm_files("samples/shaders")) files.push_back(f);
+    for (const auto& f : files) {
+        const AssembleResult r = assemble_unvalidated(read_file(f));
+        ASSERT_TRUE(r.ok()) << f;
+        const isa::DecodeResult d = isa::decode(r.tokens);
+        ASSERT_TRUE(d.ok()) << f;
+        const CheckedDisassembly c = disassemble_checked(*d.program);
+        EXPECT_FALSE(c.error) << f << ": " << c.error->message;
+        EXPECT_EQ(c.text, disassemble(*d.program));
+    }
+    const Tokens with_comment = {0xFFFF0200, isa::tokens::encode_comment(3), 0x42415443, 0x1, 0x2,
+                                 0x02000001, 0x800F0800, 0xA0E40000, 0x0000FFFF};
+    EXPECT_FALSE(disassemble_checked(*isa::decode(with_comment).program).error);
+
+    // defb b0 holding 2: "true" would assemble to 1.
+    Tokens defb = assemble_tokens("ps_2_0\ndefb b0, true\nmov oC0, c0\n");
+    ASSERT_EQ(hex(defb).substr(0, 35), "FFFF0200 0200002F E00F0800 00000001");
+    defb[3] = 2;
+    const isa::DecodeResult d = isa::decode(defb);
+    ASSERT_TRUE(d.ok()) << d.error->to_string();
+    const CheckedDisassembly c = disassemble_checked(*d.program);
+    ASSERT_TRUE(c.error);
+    EXPECT_EQ(c.error->token_offset, 1u);
+    EXPECT_EQ(c.error->message.rfind("'defb b0, true' assembles to different bytes", 0), 0u) << c.error->message;
+
+    // A source register type the ISA does not have (20): printed as ?20:0, which does not parse.
+    Tokens mov = assemble_tokens("ps_2_0\nmov oC0, c0\nmov oC1, c1\n");
+    ASSERT_EQ(mov.size(), 8u);
+    mov[6] = (mov[6] & ~(0x70000000u | 0x1800u)) | (4u << 28) | (2u << 11);  // type 20 = 0b10'100
+    const isa::DecodeResult u = isa::decode(mov);
+    if (u.ok()) {  // the decoder may refuse the type itself, which is just as good
+        const CheckedDisassembly cu = disassemble_checked(*u.program);
+        ASSERT_TRUE(cu.error);
+        EXPECT_EQ(cu.error->token_offset, 4u);
+        EXPECT_NE(cu.error->message.find("?20:"), std::string::npos) << cu.error->message;
+    }
+
+    // A def after an arithmetic instruction: the assembler puts defs first, so the bytes differ.
+    const Tokens late_def = {0xFFFF0200, 0x02000001, 0x800F0800, 0xA0E40000,
+                             0x05000051, 0xA00F0000, 0, 0, 0, 0, 0x0000FFFF};
+    const isa::DecodeResult l = isa::decode(late_def);
+    ASSERT_TRUE(l.ok()) << l.error->to_string();
+    const CheckedDisassembly cl = disassemble_checked(*l.program);
+    ASSERT_TRUE(cl.error);
+    EXPECT_EQ(cl.error->token_offset, 1u);
+}
+
 TEST(Disassembler, VertexDeclarationsPrintTheirUsage) {
     const AssembleResult r = assemble_unvalidated(
         "vs_2_0\ndcl_position v0\ndcl_texcoord3 v5.xy\ndcl_color1 v10\ndcl_normal12 v15\n");

@@ -1,10 +1,12 @@
 // Fuzz target: untrusted bytes through the decoder, the validator and the disassembler.
-// Property: whatever decodes re-encodes to exactly the input bytes.
+// Property: whatever decodes re-encodes to exactly the input bytes, and disassembles either to
+// text that assembles back to the same statements or to an error naming one.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <span>
 
+#include "sm2/assembler/assembler.h"
 #include "sm2/assembler/disassembler.h"
 #include "sm2/isa/bytecode.h"
 #include "sm2/isa/validator.h"
@@ -18,6 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (again.size() != size || !std::equal(again.begin(), again.end(), bytes.begin()))
         std::abort();  // decode/encode is not the identity
     (void)sm2::isa::validate(*result.program);
-    (void)sm2::assembler::disassemble(*result.program);
+    const auto checked = sm2::assembler::disassemble_checked(*result.program);
+    if (checked.error && checked.error->message.empty()) std::abort();  // an error must say what
     return 0;
 }

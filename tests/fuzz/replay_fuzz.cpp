@@ -1,8 +1,9 @@
 // Fuzz target: arbitrary bytes as a command stream replayed on a Device. Property: whatever the
 // stream says, replay ends without a crash, a hang or a sanitizer report; refused calls become
-// diagnostics. Sizes are capped so each input stays fast (a 4096x4096 target would make one
-// input take seconds): streams that create a surface or texture over 64 texels a side, a buffer
-// over 64 KiB, or draw more than 4096 primitives, are skipped before replay.
+// diagnostics. The Device's memory limit (64 MiB here) refuses what would blow up memory; sizes
+// are still capped so each input stays fast (a 4096x4096 target would make one input take
+// seconds): streams that create a surface or texture over 128 texels a side, a buffer over 1 MiB,
+// or draw more than 16384 primitives, are skipped before replay.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -23,7 +24,7 @@ bool too_costly(const cs::Stream& stream) {
         const bool buffer = s.name == "CreateVertexBuffer" || s.name == "CreateIndexBuffer";
         const bool surface = !buffer && s.name.rfind("Create", 0) == 0;  // sizes of targets, textures
         const bool draws = s.name.rfind("Draw", 0) == 0;
-        const int64_t limit = surface ? 64 : buffer ? 65536 : draws ? 4096 : INT64_MAX;
+        const int64_t limit = surface ? 128 : buffer ? (1 << 20) : draws ? 16384 : INT64_MAX;
         for (const auto& v : s.arguments)
             if (v.kind == cs::Value::Kind::Integer && v.integer > limit) return true;
     }
@@ -43,7 +44,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         parsed = cs::parse_text(std::string_view(reinterpret_cast<const char*>(data), size), options);
     }
     if (!parsed.ok() || too_costly(*parsed.stream)) return 0;
-    Device device;  // no output_dir: Present writes nothing
+    DeviceOptions device_options;  // no output_dir: Present writes nothing
+    device_options.memory_limit = uint64_t{64} << 20;
+    Device device(device_options);
     ReplayOptions options;
     options.base_dir = "/nonexistent";  // LoadTexture finds nothing
     options.assembler = runtime::stream_assembler();

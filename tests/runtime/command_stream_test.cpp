@@ -137,8 +137,10 @@ TEST(CommandStreamBinary, HeaderAndRecordLayout) {
 
 TEST(CommandStreamText, SideFilesAreReadThroughTheReader) {
     TextOptions options;
-    options.side_files = [](const std::string& dir, const std::string& path)
-        -> std::optional<std::vector<std::byte>> {
+    options.side_files = [](const std::string& root, const std::string& dir, const std::string& path,
+                            std::string& error) -> std::optional<std::vector<std::byte>> {
+        EXPECT_EQ(root, "scenes");  // no root_dir: the stream's folder
+        error = "not found";
         if (dir != "scenes" || path != "mesh.bin") return std::nullopt;
         return std::vector<std::byte>{std::byte{1}, std::byte{2}};
     };
@@ -155,7 +157,7 @@ TEST(CommandStreamText, SideFilesAreReadThroughTheReader) {
 
     auto missing = parse_text("sm2cs 1\nLock vb0 0 @\"other.bin\"\n", options);
     ASSERT_FALSE(missing.ok());
-    EXPECT_EQ(missing.error->to_string(), "<input>:2:12: error: cannot read side file 'other.bin'");
+    EXPECT_EQ(missing.error->to_string(), "<input>:2:12: error: cannot read side file 'other.bin': not found");
 }
 
 struct BadText {

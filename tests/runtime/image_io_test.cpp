@@ -1,6 +1,7 @@
 // image_io: surfaces written to PNG/EXR/raw and read back, and the image comparison metrics,
 // with every expected value worked out by hand.
 #include "sm2/runtime/image_io.h"
+#include "sm2/runtime/texture_io.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -203,6 +204,105 @@ TEST_F(ImageIo, WriteImageThenReadImageRoundTripsAHeatmap) {
     const Image back = read_image(path("h.png"));
     expect_pixel(back, 0, 0, 1.0f, 0, 0, 1);
     expect_pixel(back, 1, 0, 128.0f / 255, 0, 0, 1);  // round(0.5 * 255) = round(127.5) = 128
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bad files: the reproducers of tests/fuzz/corpus/images, each a few bytes asking for gigabytes
+// (or overflowing a size), are refused from their headers before any pixel is allocated, by
+// read_image (sm2 diff) and load_texture (sm2 run --texture, LoadTexture) alike.
+
+const std::string kImages = std::string(SM2_SOURCE_DIR) + "/tests/fuzz/corpus/images/";
+
+std::string read_error(const std::string& path) {
+    try {
+        (void)read_image(path);
+    } catch (const ImageIoError& e) {
+        return e.what();
+    }
+    return "no error";
+}
+std::string texture_error(const std::string& path) {
+    try {
+        (void)load_texture(path);
+    } catch (const TextureIoError& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+TEST(ImageLimits, AbsurdHeadersAreRefusedBeforeAllocating) {
+    struct Case {
+        const char* file;
+        const char* diff_error;     // read_image
+        const char* texture_error;  // load_texture
+    };
+    const Case cases[] = {
+        {"big.png", "100000x100000 is larger than 16384 pixels per side", "larger than 4096 texels per side"},
+        {"big.tga", "65535x65535 is larger than 16384 pixels per side", "larger than 4096 texels per side"},
+        {"wide.exr", "1048576x1 is larger than 16384 pixels per side", "larger than 4096 texels per side"},
+        // DDS goes through the project's reader in both
+        {"tall.dds", "size 4x2147483647x1 outside 1..4096", "size 4x2147483647x1 outside 1..4096"},
+        {"dxt.dds", "size 65536x65536x1 outside 1..4096", "size 65536x65536x1 outside 1..4096"},
+        {"mut.dds", "unsupported pixel format (flags 0x20041, 4294967295 bits)",
+         "unsupported pixel format (flags 0x20041, 4294967295 bits)"},
+    };
+    for (const Case& c : cases) {
+        const std::string path = kImages + c.file;
+        EXPECT_EQ(read_error(path), path + ": " + c.diff_error) << c.file;
+        EXPECT_EQ(texture_error(path), path + ": " + c.texture_error) << c.file;
+    }
+}
+
+TEST(ImageLimits, OnlyFourOfAnExrsManyChannelsAreRead) {
+    // 2x1, 300 half channels c0000..c0299: c0000 = 1, the others 0.5.
+    const Image image = read_image(kImages + "many_channels.exr");
+    ASSERT_EQ(image.width, 2u);
+    ASSERT_EQ(image.height, 1u);
+    EXPECT_EQ(image.rgba, (std::vector<float>{1, 0.5f, 0.5f, 0.5f, 1, 0.5f, 0.5f, 0.5f}));
+    const Texture t = load_texture(kImages + "many_channels.exr");
+    EXPECT_EQ(t.format(), Format::A16B16G16R16F);
+    EXPECT_EQ(t.surface(0).read(1, 0), (Float4{1, 0.5f, 0.5f, 0.5f}));
+}
+
+TEST_F(ImageIo, LimitsAreCheckedAgainstTheHeader) {
+    write_image(make_image(64, 32, std::vector<float>(64 * 32 * 4, 0.25f)), path("a.png"));
+    EXPECT_EQ(read_image(path("a.png"), {.max_side = 64, .max_bytes = 64 * 32 * 16}).width, 64u);
+    try {
+        (void)read_image(path("a.png"), {.max_side = 63});
+        ADD_FAILURE() << "no error";
+    } catch (const ImageIoError& e) {
+        EXPECT_EQ(std::string(e.what()), path("a.png") + ": 64x32 is larger than 63 pixels per side");
+    }
+    try {
+        (void)read_image(path("a.png"), {.max_side = 64, .max_bytes = 64 * 32 * 16 - 1});
+        ADD_FAILURE() << "no error";
+    } catch (const ImageIoError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  path("a.png") + ": 64x32 needs 32768 bytes as float RGBA, more than the 32767-byte limit");
+    }
+}
+
+TEST_F(ImageIo, DirectoriesAndDevicesAreNotImages) {
+    fs::create_directories(path("folder.png"));
+    EXPECT_EQ(read_error(path("folder.png")), path("folder.png") + ": is a directory");
+    EXPECT_EQ(texture_error(path("folder.png")), path("folder.png") + ": is a directory");
+    EXPECT_EQ(read_error("/dev/zero"), "/dev/zero: is a character device, not a regular file");
+    EXPECT_EQ(texture_error("/dev/zero"), "/dev/zero: is a character device, not a regular file");
+}
+
+// EXR files carry no wall-clock time: the same surface gives the same bytes (capDate fixed).
+TEST_F(ImageIo, ExrFilesAreByteReproducible) {
+    const Image image = make_image(2, 1, {1.5f, -2, 0, 1, 0.25f, 0, 0, 1});
+    write_image(image, path("a.exr"));
+    const auto slurp = [](const std::string& p) {
+        std::ifstream in(p, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    };
+    const std::string first = slurp(path("a.exr"));
+    EXPECT_NE(first.find("capDate"), std::string::npos);
+    EXPECT_NE(first.find("1970:01:01 00:00:00"), std::string::npos);
+    write_image(image, path("b.exr"));
+    EXPECT_EQ(slurp(path("b.exr")), first);
 }
 
 }  // namespace

@@ -113,10 +113,24 @@ TEST(OutputMerger, AlphaTestAndFogFactor) {
     rs.alpha_ref = 0x180;  // only the low 8 bits: 0x80 -> 128/255 = 0.50196
     rs.alpha_func = CompareFunc::GreaterEqual;
     const auto s = output_merger_state(rs);
-    EXPECT_FALSE(alpha_test_passes(s, 0.5f));
-    EXPECT_TRUE(alpha_test_passes(s, 0.51f));
-    EXPECT_TRUE(alpha_test_passes(s, 7.0f));  // clamped to 1
-    EXPECT_FALSE(alpha_test_passes(s, std::nanf("")));
+    EXPECT_FALSE(alpha_test_passes(s, 0.5f, true));
+    EXPECT_TRUE(alpha_test_passes(s, 0.51f, true));
+    EXPECT_TRUE(alpha_test_passes(s, 7.0f, true));  // clamped to 1
+    EXPECT_FALSE(alpha_test_passes(s, std::nanf(""), true));
+    EXPECT_FALSE(alpha_test_passes(s, std::nanf(""), false));
+    // Float targets do not clamp: GREATER 255 (1.0) passes 1.5 there, not on a clamping target;
+    // LESS 0 passes -0.25 there.
+    RenderState greater = rs;
+    greater.alpha_ref = 255;
+    greater.alpha_func = CompareFunc::Greater;
+    EXPECT_TRUE(alpha_test_passes(output_merger_state(greater), 1.5f, false));
+    EXPECT_FALSE(alpha_test_passes(output_merger_state(greater), 1.5f, true));
+    EXPECT_FALSE(alpha_test_passes(output_merger_state(greater), 1.0f, false));
+    RenderState less = rs;
+    less.alpha_ref = 0;
+    less.alpha_func = CompareFunc::Less;
+    EXPECT_TRUE(alpha_test_passes(output_merger_state(less), -0.25f, false));
+    EXPECT_FALSE(alpha_test_passes(output_merger_state(less), -0.25f, true));
 
     OutputMergerState f;
     f.fog_table_mode = FogMode::None;

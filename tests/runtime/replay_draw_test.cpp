@@ -149,5 +149,60 @@ TEST(ReplayDraw, RefusedDrawsKeepTheirLineAndTheSurface) {
     EXPECT_EQ(o.statistics.draws, 0u);
 }
 
+// Alpha test on the alpha the shader wrote: clamped to [0, 1] where render target 0 clamps
+// (A8R8G8B8), as written on float targets (A32B32G32R32F, A16B16G16R16F): 1.5 passes GREATER 255
+// and -0.25 passes LESS 0 there, and fails both on the 8-bit target.
+bool alpha_test_writes(const std::string& format, const std::string& alpha, const std::string& func,
+                       const std::string& ref) {
+    const std::string text =
+        "sm2cs 1\n"
+        "CreateDevice 4 4 A8R8G8B8\n"
+        "CreateRenderTarget rt 4 4 " + format + "\n"
+        "SetRenderTarget 0 rt\n"
+        "CreateVertexShader vs asm<<END\nvs_2_0\ndcl_position v0\nmov oPos, v0\nEND\n"
+        "CreatePixelShader ps asm<<END\nps_2_0\nmov oC0, c0\nEND\n"
+        "CreateVertexDeclaration decl { 0 0 FLOAT3 DEFAULT POSITION 0 }\n"
+        "SetVertexDeclaration decl\nSetVertexShader vs\nSetPixelShader ps\n"
+        "SetPixelShaderConstantF 0 f32[ 0.25 0.5 0.75 " + alpha + " ]\n"
+        "SetRenderState CULLMODE NONE\n"
+        "SetRenderState ALPHATESTENABLE TRUE\n"
+        "SetRenderState ALPHAFUNC " + func + "\n"
+        "SetRenderState ALPHAREF " + ref + "\n"
+        "Clear TARGET 0x00000000 1 0\n"
+        "BeginScene\n"
+        "DrawPrimitiveUP TRIANGLESTRIP 2 12 f32[ " + kQuadStrip + " ]\n"
+        "EndScene\n";
+    auto parsed = cs::parse_text(text);
+    EXPECT_TRUE(parsed.ok()) << parsed.error->to_string();
+    if (!parsed.ok()) return false;
+    Device device;
+    ReplayOptions options;
+    options.assembler = runtime::stream_assembler();
+    const ReplayResult r = replay(device, *parsed.stream, options);
+    expect_no_diagnostics(r);
+    const Surface* rt = device.surface("rt");
+    EXPECT_NE(rt, nullptr);
+    if (!rt) return false;
+    const Float4 pixel = rt->read(1, 1);
+    EXPECT_EQ(pixel, rt->read(2, 3)) << "every pixel alike";
+    if (pixel[1] == 0.0f) return false;  // still cleared
+    EXPECT_NEAR(pixel[1], 0.5f, 1.0f / 255);  // 128/255 on the 8-bit target
+    return true;
+}
+
+TEST(ReplayDraw, AlphaTestClampsOnlyWhereTheTargetClamps) {
+    for (const char* format : {"A32B32G32R32F", "A16B16G16R16F"}) {
+        EXPECT_TRUE(alpha_test_writes(format, "1.5", "GREATER", "255")) << format;
+        EXPECT_TRUE(alpha_test_writes(format, "-0.25", "LESS", "0")) << format;
+        EXPECT_FALSE(alpha_test_writes(format, "1", "GREATER", "255")) << format;
+        EXPECT_FALSE(alpha_test_writes(format, "0", "LESS", "0")) << format;
+    }
+    // 8-bit UNORM: 1.5 clamps to 1, not greater than 255/255; -0.25 clamps to 0, not less than 0
+    EXPECT_FALSE(alpha_test_writes("A8R8G8B8", "1.5", "GREATER", "255"));
+    EXPECT_FALSE(alpha_test_writes("A8R8G8B8", "-0.25", "LESS", "0"));
+    EXPECT_TRUE(alpha_test_writes("A8R8G8B8", "1.5", "GREATEREQUAL", "255"));
+    EXPECT_TRUE(alpha_test_writes("A8R8G8B8", "0.75", "GREATER", "128"));
+}
+
 }  // namespace
 }  // namespace sm2::runtime

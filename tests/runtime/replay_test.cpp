@@ -4,6 +4,7 @@
 #include "sm2/runtime/replay.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <array>
@@ -541,12 +542,156 @@ TEST_F(Replay, SaveSurfaceWritesRelativeToTheOutputFolder) {
        "SetRenderTarget 0 rt\n"
        "Clear TARGET 0xFF0000FF 1 0\n"
        "SaveSurface rt \"saved.png\"\n"
-       "SaveSurface rt \"" + path("abs.exr") + "\"\n");
+       "SaveSurface rt \"sub/../also.exr\"\n");
     EXPECT_EQ(read_image(path("saved.png")).rgba, (std::vector<float>{0, 0, 1, 1}));
-    EXPECT_EQ(read_image(path("abs.exr")).rgba, (std::vector<float>{0, 0, 1, 1}));
+    EXPECT_EQ(read_image(path("also.exr")).rgba, (std::vector<float>{0, 0, 1, 1}));
     refused_with("SaveSurface rt \"x.unknown\"", "SaveSurface: ");
     refused_with("SaveSurface nothing \"n.png\"", "'nothing' is not a surface or texture");
     refused_with("SaveSurface rt saved2", "argument 2 (file): expected a string");
+}
+
+// SaveSurface writes inside the output folder only: absolute paths, `..` out of it and symbolic
+// links leading out are refused with the call's line, and nothing is written.
+TEST_F(Replay, SaveSurfaceStaysInsideTheOutputFolder) {
+    ok("CreateRenderTarget rt 1 1 A8R8G8B8\n");
+    const fs::path outside = fs::path(path("")).parent_path().parent_path() /
+                             ("sm2_outside_" + std::to_string(getpid()));
+    fs::create_directories(outside);
+    fs::create_directory_symlink(outside, path("link"));
+    refused_with("SaveSurface rt \"" + (outside / "abs.png").string() + "\"", "is an absolute path");
+    refused_with("SaveSurface rt \"../escape.png\"", "outside");
+    refused_with("SaveSurface rt \"link/escape.png\"", "outside");
+    EXPECT_FALSE(fs::exists(outside / "abs.png"));
+    EXPECT_FALSE(fs::exists(fs::path(path("")).parent_path().parent_path() / "escape.png"));
+    EXPECT_FALSE(fs::exists(outside / "escape.png"));
+    fs::remove_all(outside);
+}
+
+// LoadTexture reads inside the stream's folder (or the wider read root) only.
+TEST_F(Replay, LoadTextureStaysInsideTheReadRoot) {
+    Image image;
+    image.width = image.height = 1;
+    image.rgba = {0, 1, 0, 1};
+    const fs::path sibling = fs::path(path("")).parent_path().parent_path() /
+                             ("sm2_sibling_" + std::to_string(getpid()));
+    fs::create_directories(sibling);
+    write_image(image, (sibling / "tex.png").string());
+    fs::create_symlink(sibling / "tex.png", path("link.png"));
+    const std::string up = "../" + sibling.filename().string() + "/tex.png";
+    refused_with("LoadTexture a \"/etc/passwd\"", "argument 2 (file): '/etc/passwd' is an absolute path");
+    refused_with("LoadTexture b \"" + up + "\"", "outside");
+    refused_with("LoadTexture c \"link.png\"", "outside");
+    EXPECT_FALSE(device().has_resource("a") || device().has_resource("b") || device().has_resource("c"));
+
+    // --read-root widens the root to the parent folder: the same paths load.
+    Device wide_device;
+    ReplayOptions options = replay_options();
+    options.root_dir = sibling.parent_path().string();
+    Replayer wide(wide_device, options);
+    auto parsed = cs::parse_text("sm2cs 1\nLoadTexture b \"" + up + "\"\nLoadTexture c \"link.png\"\n");
+    ASSERT_TRUE(parsed.ok());
+    const ReplayResult r = wide.replay(*parsed.stream);
+    EXPECT_TRUE(r.ok()) << (r.diagnostics.empty() ? "" : r.diagnostics[0].to_string());
+    ASSERT_NE(wide_device.surface("b"), nullptr);
+    EXPECT_EQ(wide_device.surface("c")->read(0, 0), (Float4{0, 1, 0, 1}));
+    fs::remove_all(sibling);
+}
+
+// Side files likewise: the parse error names the line and column of the '@'.
+TEST_F(Replay, SideFilesStayInsideTheStreamsFolder) {
+    cs::TextOptions text;
+    text.file_name = "t.sm2cs";
+    text.base_dir = path("");
+    auto absolute = cs::parse_text("sm2cs 1\nLock vb 0 @\"/etc/passwd\"\n", text);
+    ASSERT_FALSE(absolute.ok());
+    EXPECT_EQ(absolute.error->to_string(),
+              "t.sm2cs:2:11: error: cannot read side file '/etc/passwd': '/etc/passwd' is an absolute path; streams "
+              "may name files only relative to their folder");
+    auto up = cs::parse_text("sm2cs 1\nCreateVertexBuffer vb 4\n\nLock vb 0 @\"../../etc/passwd\"\n", text);
+    ASSERT_FALSE(up.ok());
+    EXPECT_EQ(up.error->line, 4u);
+    EXPECT_NE(up.error->message.find("outside"), std::string::npos) << up.error->message;
+    // A folder and a FIFO are refused at once (a FIFO with no writer would block a plain open).
+    fs::create_directory(path("folder"));
+    ASSERT_EQ(mkfifo(path("fifo").c_str(), 0600), 0);
+    auto folder = cs::parse_text("sm2cs 1\nLock vb 0 @\"folder\"\n", text);
+    ASSERT_FALSE(folder.ok());
+    EXPECT_EQ(folder.error->message, "cannot read side file 'folder': is a directory");
+    auto fifo = cs::parse_text("sm2cs 1\nLock vb 0 @\"fifo\"\n", text);
+    ASSERT_FALSE(fifo.ok());
+    EXPECT_EQ(fifo.error->message, "cannot read side file 'fifo': is a FIFO (named pipe), not a regular file");
+    refused_with("LoadTexture t \"fifo\"", "is a FIFO");
+    refused_with("LoadTexture t \"folder\"", "is a directory");
+}
+
+// Resources count against DeviceOptions::memory_limit: past it a creation is refused with
+// D3DERR_OUTOFVIDEOMEMORY before anything is allocated, the replay goes on, Release gives back.
+TEST(ReplayMemory, ResourcesPastTheLimitAreOutOfVideoMemory) {
+    DeviceOptions options;
+    options.memory_limit = 1 << 20;  // 1 MiB
+    Device device(options);
+    ReplayOptions replay_options;
+    replay_options.file_name = "m.sm2cs";
+    auto parsed = cs::parse_text(
+        "sm2cs 1\n"
+        "CreateTexture big 1024 1024 1 A8R8G8B8\n"       // 4 MiB: refused
+        "CreateTexture t 256 256 1 A8R8G8B8\n"           // 256 KiB
+        "CreateVertexBuffer vb 600000\n"
+        "CreateRenderTarget rt 256 256 A8R8G8B8\n"       // 256 KiB more: refused
+        "Release vb\n"
+        "CreateRenderTarget rt 256 256 A8R8G8B8\n"       // fits now
+        "CreateVolumeTexture v 512 512 512 1 A32B32G32R32F\n"  // 2 GiB: refused, not allocated
+        "CreateCubeTexture c 4096 0 A32B32G32R32F\n");  // 6 faces x 341 MiB: refused
+    ASSERT_TRUE(parsed.ok());
+    const ReplayResult r = replay(device, *parsed.stream, replay_options);
+    ASSERT_EQ(r.diagnostics.size(), 4u);
+    EXPECT_EQ(r.diagnostics[0].to_string(),
+              "m.sm2cs:2: D3DERR_OUTOFVIDEOMEMORY: CreateTexture: 'big' needs 4194304 bytes; 0 of the 1048576-byte "
+              "memory limit are in use");
+    EXPECT_EQ(r.diagnostics[1].to_string(),
+              "m.sm2cs:5: D3DERR_OUTOFVIDEOMEMORY: CreateRenderTarget: 'rt' needs 262144 bytes; 862144 of the "
+              "1048576-byte memory limit are in use");
+    EXPECT_EQ(r.diagnostics[2].line, 8u);
+    EXPECT_EQ(r.diagnostics[2].code, CallError::OutOfVideoMemory);
+    EXPECT_EQ(r.diagnostics[3].line, 9u);
+    EXPECT_EQ(r.diagnostics[3].code, CallError::OutOfVideoMemory);
+    EXPECT_FALSE(device.has_resource("big"));
+    EXPECT_TRUE(device.has_resource("rt"));
+    EXPECT_EQ(device.memory_used(), 2u * 256 * 256 * 4);
+}
+
+// A draw of the largest vertex count D3D9 allows (MaxPrimitiveCount triangles) needs gigabytes of
+// working memory: refused with E_OUTOFMEMORY against the memory limit, before any allocation.
+TEST(ReplayMemory, DrawsPastTheLimitAreOutOfMemory) {
+    DeviceOptions options;
+    options.memory_limit = uint64_t{1} << 30;
+    Device device(options);
+    ReplayOptions replay_options;
+    replay_options.file_name = "d.sm2cs";
+    replay_options.assembler = runtime::stream_assembler();
+    auto parsed = cs::parse_text(
+        "sm2cs 1\n"
+        "CreateDevice 4 4 A8R8G8B8\n"
+        "CreateVertexBuffer vb 48\n"
+        "CreateVertexDeclaration decl { 0 0 FLOAT4 DEFAULT POSITION 0 }\n"
+        "CreateVertexShader vs asm<<END\nvs_2_0\ndcl_position v0\nmov oPos, v0\nEND\n"
+        "SetVertexDeclaration decl\n"
+        "SetVertexShader vs\n"
+        "SetStreamSource 0 vb 0 16\n"
+        "BeginScene\n"
+        "DrawPrimitive TRIANGLELIST 0 5592405\n"
+        "DrawPrimitiveUP TRIANGLELIST 5592405 16 f32[ 0 0 0 1 ]\n"
+        "DrawPrimitive TRIANGLELIST 0 1\n"
+        "EndScene\n");
+    ASSERT_TRUE(parsed.ok()) << parsed.error->to_string();
+    const ReplayResult r = replay(device, *parsed.stream, replay_options);
+    ASSERT_EQ(r.diagnostics.size(), 2u);
+    EXPECT_EQ(r.diagnostics[0].to_string(),
+              "d.sm2cs:14: E_OUTOFMEMORY: DrawPrimitive: 16777215 vertices need about 4294967040 bytes of working "
+              "memory, more than the 1073741824-byte memory limit");
+    EXPECT_EQ(r.diagnostics[1].line, 15u);
+    EXPECT_EQ(r.diagnostics[1].code, CallError::OutOfMemory);
+    EXPECT_EQ(device.statistics().draws, 1u);  // the small draw after them ran
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -273,13 +274,14 @@ TEST(CliRun, TexturesAndSamplerStates) {
     auto missing = sm2("run " + shader + " --texture s0=/nonexistent.png");
     EXPECT_EQ(missing.status, 1);
     EXPECT_NE(missing.err.find("cannot open"), std::string::npos) << missing.err;
+    // Malformed option values are usage errors (2), like every other
     auto bad = sm2("run " + shader + " --sampler-state s0.MAGFILTER=BILINEAR");
-    EXPECT_EQ(bad.status, 1);
+    EXPECT_EQ(bad.status, 2);
     EXPECT_NE(bad.err.find("not a D3DTEXF_* value"), std::string::npos) << bad.err;
-    EXPECT_EQ(sm2("run " + shader + " --texture s16=" + image).status, 1);
+    EXPECT_EQ(sm2("run " + shader + " --texture s16=" + image).status, 2);
 }
 
-TEST(CliRun, BadInputIsStatus1WithAMessage) {
+TEST(CliRun, MalformedOptionsAreStatus2BadFilesStatus1) {
     const std::string shader = kSamples + "gouraud.ps.asm";
     struct Case {
         std::string args;
@@ -293,13 +295,17 @@ TEST(CliRun, BadInputIsStatus1WithAMessage) {
         {"--const c32=1", "out of range (c0..c31)"},
         {"--const c0", "expected cN=values"},
         {"--bool b0=maybe", "true or false"},
-        {"--lanes /nonexistent.csv", "cannot open"},
+        {"--texture x0=a.png", "expected sN=FILE"},
+        {"--sampler-state s0.NOSUCH=1", "unknown sampler state 'NOSUCH'"},
     };
     for (const Case& c : cases) {
         auto r = sm2("run " + shader + " " + c.args);
-        EXPECT_EQ(r.status, 1) << c.args;
+        EXPECT_EQ(r.status, 2) << c.args;
         EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
     }
+    auto missing = sm2("run " + shader + " --lanes /nonexistent.csv");
+    EXPECT_EQ(missing.status, 1);
+    EXPECT_NE(missing.err.find("cannot open"), std::string::npos) << missing.err;
     const std::string csv = tmp("bad.csv");
     write_file(csv, "v0.x,v0.q\n1,2\n");
     EXPECT_NE(sm2("run " + shader + " --lanes " + csv).err.find("component must be x, y, z or w"), std::string::npos);
@@ -530,6 +536,166 @@ TEST(CliDiff, SizeMismatchAndMissingFilesAreStatus1) {
     auto m = sm2("diff " + dir + "/a.png " + dir + "/missing.png");
     EXPECT_EQ(m.status, 1);
     EXPECT_NE(m.err.find("missing.png"), std::string::npos) << m.err;
+}
+
+TEST(CliDiff, StdinAndNanTolerance) {
+    const std::string dir = make_images();
+    // '-' reads one of the two images from stdin (any format: PNG here)
+    auto same = sm2("diff - " + dir + "/b.png", slurp(dir + "/b.png"));
+    EXPECT_EQ(same.status, 0) << same.err;
+    EXPECT_NE(same.out.find("differing pixels: 0 of 4"), std::string::npos) << same.out;
+    auto differs = sm2("diff " + dir + "/a.png -", slurp(dir + "/b.png"));
+    EXPECT_EQ(differs.status, 1) << differs.err;
+    EXPECT_NE(differs.out.find("differing pixels: 1 of 4"), std::string::npos) << differs.out;
+    EXPECT_EQ(sm2("diff - -", slurp(dir + "/b.png")).status, 2);
+    // NaN would make every comparison false, so every pixel "equal": refused as bad usage
+    auto nan = sm2("diff " + dir + "/a.png " + dir + "/b.png --tolerance nan");
+    EXPECT_EQ(nan.status, 2);
+    EXPECT_NE(nan.err.find("'nan' is not a number"), std::string::npos) << nan.err;
+    EXPECT_EQ(sm2("diff " + dir + "/a.png " + dir + "/b.png --heatmap-scale nan").status, 2);
+}
+
+// Files that are not regular files, as the input of every command: a clear message and status 1,
+// never an abort or a hang (ctest's timeout would catch one).
+TEST(CliBadFiles, DirectoriesDevicesAndFifosAreRefused) {
+    const std::string dir = make_dir("badfiles");
+    const std::string fifo = dir + "/fifo";
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+    const std::string shader = kSamples + "gouraud.ps.asm";
+    const std::string texture_shader = tmp("tex_bad.asm");
+    write_file(texture_shader, "ps_2_0\ndcl t0.xy\ndcl_2d s0\ntexld r0, t0, s0\nmov oC0, r0\n");
+    struct Case {
+        std::string args;
+        std::string message;
+    };
+    const Case cases[] = {
+        {"asm " + dir, dir + ": is a directory"},
+        {"dis " + dir, dir + ": is a directory"},
+        {"validate /dev/zero", "/dev/zero: is a character device, not a regular file"},
+        {"cs pack " + fifo + " -o " + dir + "/x.sm2cb", fifo + ": is a FIFO (named pipe), not a regular file"},
+        {"cs dump " + dir, dir + ": is a directory"},
+        {"replay /dev/zero -o " + dir + "/out", "/dev/zero: is a character device"},
+        {"bench " + fifo, fifo + ": is a FIFO"},
+        {"run " + fifo, fifo + ": is a FIFO"},
+        {"run " + shader + " --lanes /dev/zero", "/dev/zero: is a character device"},
+        {"run " + shader + " --lanes " + fifo, fifo + ": is a FIFO"},
+        {"run " + texture_shader + " --texture s0=/dev/zero", "/dev/zero: is a character device"},
+        {"run " + texture_shader + " --texture s0=" + fifo, fifo + ": is a FIFO"},
+        {"run " + texture_shader + " --texture s0=" + dir, dir + ": is a directory"},
+        {"diff " + dir + " " + fifo, dir + ": is a directory"},
+        {"diff /dev/zero " + dir, "/dev/zero: is a character device"},
+    };
+    for (const Case& c : cases) {
+        auto r = sm2(c.args);
+        EXPECT_EQ(r.status, 1) << c.args << ": " << r.err;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
+    }
+    // stdin that never ends (/dev/zero) stops at the input size limit
+    const std::string cmd = std::string(SM2_TOOL) + " asm - </dev/zero >/dev/null 2>" + dir + "/err";
+    const int raw = std::system(cmd.c_str());
+    EXPECT_EQ(WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, 1);
+    EXPECT_NE(slurp(dir + "/err").find("<stdin>: larger than the 268435456-byte limit"), std::string::npos);
+    // Side files and LoadTexture of a stream likewise (the line is named)
+    const std::string stream = dir + "/s.sm2cs";
+    write_file(stream, "sm2cs 1\nCreateDevice 4 4 A8R8G8B8\nLoadTexture t \"fifo\"\n");
+    auto load = sm2("replay " + stream + " -o " + dir + "/out");
+    EXPECT_EQ(load.status, 1);
+    EXPECT_NE(load.err.find("s.sm2cs:3: D3DERR_INVALIDCALL: LoadTexture: " + fifo + ": is a FIFO"), std::string::npos)
+        << load.err;
+    write_file(stream, "sm2cs 1\nCreateVertexBuffer vb 4\nLock vb 0 @\"fifo\"\n");
+    auto side = sm2("cs dump " + stream);
+    EXPECT_EQ(side.status, 1);
+    EXPECT_NE(side.err.find("s.sm2cs:3:11: error: cannot read side file 'fifo': is a FIFO"), std::string::npos)
+        << side.err;
+}
+
+// Paths in streams stay inside the stream's folder (reads) and -o DIR (writes); --read-root widens
+// the read side.
+TEST(CliReplay, StreamPathsStayInsideTheirFolders) {
+    const std::string dir = make_dir("paths");
+    std::system(("mkdir -p " + dir + "/streams " + dir + "/shared " + dir + "/out").c_str());
+    write_file(dir + "/shared/data.bin", std::string(4, '\x01'));
+    const std::string stream = dir + "/streams/s.sm2cs";
+    write_file(stream, "sm2cs 1\nCreateVertexBuffer vb 4\nLock vb 0 @\"../shared/data.bin\"\n");
+    auto narrow = sm2("cs dump " + stream);
+    EXPECT_EQ(narrow.status, 1);
+    EXPECT_NE(narrow.err.find("s.sm2cs:3:11: error: cannot read side file '../shared/data.bin'"), std::string::npos)
+        << narrow.err;
+    auto wide = sm2("replay " + stream + " -o " + dir + "/out --read-root " + dir);
+    EXPECT_EQ(wide.status, 0) << wide.err;
+    write_file(stream, "sm2cs 1\nCreateRenderTarget rt 1 1 A8R8G8B8\nSaveSurface rt \"../escape.png\"\n"
+                       "SaveSurface rt \"/tmp/escape.png\"\nSaveSurface rt \"inside.png\"\n");
+    auto save = sm2("replay " + stream + " -o " + dir + "/out");
+    EXPECT_EQ(save.status, 1);
+    EXPECT_NE(save.err.find("s.sm2cs:3: D3DERR_INVALIDCALL: SaveSurface: '../escape.png' resolves to"),
+              std::string::npos)
+        << save.err;
+    EXPECT_NE(save.err.find("s.sm2cs:4: D3DERR_INVALIDCALL: SaveSurface: '/tmp/escape.png' is an absolute path"),
+              std::string::npos)
+        << save.err;
+    EXPECT_FALSE(exists(dir + "/escape.png"));
+    EXPECT_TRUE(exists(dir + "/out/inside.png"));
+}
+
+// --memory-limit: resources past it are refused with D3DERR_OUTOFVIDEOMEMORY, the replay goes on.
+TEST(CliReplay, MemoryLimitRefusesLargeResources) {
+    const std::string dir = make_dir("memory");
+    write_file(dir + "/m.sm2cs", "sm2cs 1\nCreateTexture big 2048 2048 1 A32B32G32R32F\n"
+                                 "CreateTexture small 256 256 1 A8R8G8B8\n");
+    auto r = sm2("replay " + dir + "/m.sm2cs -o " + dir + "/out --memory-limit 32");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("m.sm2cs:2: D3DERR_OUTOFVIDEOMEMORY: CreateTexture: 'big' needs 67108864 bytes; 0 of the "
+                         "33554432-byte memory limit are in use"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("1 of 2 calls refused"), std::string::npos) << r.err;
+    EXPECT_EQ(sm2("replay " + dir + "/m.sm2cs -o " + dir + "/out --memory-limit 65").status, 0);
+    EXPECT_EQ(sm2("replay " + dir + "/m.sm2cs -o " + dir + "/out --memory-limit 0").status, 2);
+}
+
+TEST(Cli, AsmCArrayNameMustBeACIdentifier) {
+    auto ok = sm2("asm - --format c --name g_ps2", "ps_2_0\nmov oC0, c0\n");
+    EXPECT_EQ(ok.status, 0) << ok.err;
+    EXPECT_EQ(ok.out.rfind("const unsigned int g_ps2[", 0), 0u) << ok.out;
+    for (const char* bad : {"'x[1]; int evil'", "2abc", "int", "a-b", "''"}) {
+        auto r = sm2(std::string("asm - --format c --name ") + bad, "ps_2_0\nmov oC0, c0\n");
+        EXPECT_EQ(r.status, 2) << bad;
+        EXPECT_EQ(r.out, "") << bad;
+    }
+}
+
+// sm2 run of bytecode that fails validation names the token, like sm2 validate.
+TEST(CliRun, BytecodeValidationErrorsNameTheToken) {
+    const std::string text = tmp("unlocated.asm"), bin = tmp("unlocated.bin");
+    write_file(text, "ps_2_0\ntexld r0, t0, s0\nmov oC0, r0\n");
+    ASSERT_EQ(sm2("asm " + text + " --no-validate -o " + bin).status, 0);
+    auto r = sm2("run " + bin);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find(bin + ": token 1 (byte 0x4): error: [input-declared] texld: t0 is read but not declared\n"
+                               "    texld r0, t0, s0\n"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.err, sm2("validate " + bin).err);
+}
+
+// sm2 dis writes only text that assembles back to the same bytes; otherwise a located error.
+TEST(Cli, DisRefusesBytecodeTextCannotExpress) {
+    // defb b0 holding 2 ("true" would reassemble to 1)
+    auto defb = sm2("dis -", "FFFF0200 0200002F E00F0800 00000002 02000001 800F0800 A0E40000 0000FFFF\n");
+    EXPECT_EQ(defb.status, 1);
+    EXPECT_EQ(defb.out, "");
+    EXPECT_NE(defb.err.find("<stdin>: token 1 (byte 0x4): error: 'defb b0, true' assembles to different bytes"),
+              std::string::npos)
+        << defb.err;
+    // register type 8 in a vertex shader (no such register there): printed ?8:0, which does not parse
+    auto unknown = sm2("dis -", "FFFE0200 02000001 800F0000 80E40800 0000FFFF\n");
+    EXPECT_EQ(unknown.status, 1);
+    EXPECT_NE(unknown.err.find("<stdin>: token 1 (byte 0x4): error: 'mov r0, ?8:0' does not assemble"),
+              std::string::npos)
+        << unknown.err;
+    auto fine = sm2("dis -", "FFFF0200 0200002F E00F0800 00000001 02000001 800F0800 A0E40000 0000FFFF\n");
+    EXPECT_EQ(fine.status, 0) << fine.err;
+    EXPECT_EQ(fine.out, "ps_2_0\ndefb b0, true\nmov oC0, c0\n");
 }
 
 }  // namespace

@@ -52,9 +52,13 @@ void* open_image(const char* path, Info* info, OpenStatus* status, std::string* 
     return reader.release();
 }
 
-bool read_image(void* handle, float* pixels, std::string* error) {
+bool read_image(void* handle, int channels, float* pixels, std::string* error) {
     auto* reader = static_cast<OpenReader*>(handle);
-    if (!reader->input->read_image(0, 0, 0, reader->spec.nchannels, OIIO::TypeDesc::FLOAT, pixels)) {
+    if (channels < 1 || channels > reader->spec.nchannels) {
+        *error = "bad channel count";
+        return false;
+    }
+    if (!reader->input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels)) {
         *error = reader->input->geterror();
         return false;
     }
@@ -77,6 +81,9 @@ bool write_image(const char* path, uint32_t width, uint32_t height, bool eight_b
     const OIIO::TypeDesc type = eight_bit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
     OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), 4, type);
     spec.attribute("oiio:UnassociatedAlpha", 1);  // store the values as given, no premultiplication
+    // OpenImageIO stamps EXR files with the wall-clock time (capDate) unless DateTime is given:
+    // a fixed one keeps every output file byte-reproducible.
+    spec.attribute("DateTime", "1970:01:01 00:00:00");
     if (!output->open(path, spec)) {
         *error = "cannot open for writing: " + output->geterror();
         return false;

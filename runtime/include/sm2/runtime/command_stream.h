@@ -75,16 +75,21 @@ struct ParseResult {
     [[nodiscard]] bool ok() const { return stream.has_value(); }
 };
 
-// Reads a side file named in the stream (path as written, relative to the stream's folder);
-// returns nullopt when it cannot be read.
-using SideFileReader = std::optional<std::vector<std::byte>> (*)(const std::string& base_dir,
-                                                                  const std::string& path);
-[[nodiscard]] std::optional<std::vector<std::byte>> read_side_file(const std::string& base_dir,
-                                                                   const std::string& path);
+// Reads a side file named in the stream: `path` as written, relative to the stream's folder
+// `base_dir`, which must resolve inside `root_dir` (runtime/file_io.h resolve_inside: no absolute
+// path, no `..` or symbolic link leaving it); a regular file of at most kMaxInputFileBytes.
+// nullopt and the reason in `error` when it cannot be read.
+using SideFileReader = std::optional<std::vector<std::byte>> (*)(const std::string& root_dir,
+                                                                  const std::string& base_dir,
+                                                                  const std::string& path, std::string& error);
+[[nodiscard]] std::optional<std::vector<std::byte>> read_side_file(const std::string& root_dir,
+                                                                   const std::string& base_dir,
+                                                                   const std::string& path, std::string& error);
 
 struct TextOptions {
     std::string file_name = "<input>";  // for messages
     std::string base_dir = ".";         // where side files are looked up
+    std::string root_dir;               // the folder they must stay inside (empty: base_dir)
     SideFileReader side_files = &read_side_file;
 };
 

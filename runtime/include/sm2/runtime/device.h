@@ -35,11 +35,21 @@ namespace sm2::runtime {
 
 class WorkerPool;
 
+// The HRESULT a refused call returns: D3DERR_INVALIDCALL for bad arguments and state,
+// D3DERR_OUTOFVIDEOMEMORY when a resource does not fit in DeviceOptions::memory_limit, and
+// E_OUTOFMEMORY when the host cannot allocate what a call needs.
+enum class CallError : uint8_t { InvalidCall, OutOfVideoMemory, OutOfMemory };
+// "D3DERR_INVALIDCALL", "D3DERR_OUTOFVIDEOMEMORY", "E_OUTOFMEMORY".
+[[nodiscard]] const char* call_error_name(CallError error);
+
 struct CallResult {
     bool ok = true;
-    std::string error;  // why D3D9 would answer D3DERR_INVALIDCALL
+    std::string error;  // why D3D9 would refuse the call
+    CallError code = CallError::InvalidCall;
     [[nodiscard]] static CallResult success() { return {}; }
-    [[nodiscard]] static CallResult fail(std::string message) { return {false, std::move(message)}; }
+    [[nodiscard]] static CallResult fail(std::string message, CallError code = CallError::InvalidCall) {
+        return {false, std::move(message), code};
+    }
     explicit operator bool() const { return ok; }
 };
 
@@ -51,6 +61,8 @@ constexpr unsigned kMaxPixelShaderConstantsF = 224;   // D3D9's SetPixelShaderCo
 constexpr unsigned kMaxConstantsI = 16;
 constexpr unsigned kMaxConstantsB = 16;
 constexpr unsigned kMaxSamplers = 16;
+// The default of DeviceOptions::memory_limit: 2 GiB of resources.
+constexpr uint64_t kDefaultMemoryLimit = uint64_t{2} << 30;
 
 struct DeviceOptions {
     // Where Present writes frame_NNNN.png (empty: frames are counted but not written).
@@ -75,6 +87,11 @@ struct DeviceOptions {
     // bytes are the same (tests/scenes and tests/emu/jit compare the two).
     enum class Engine : uint8_t { Interpreter, Jit };
     Engine engine = Engine::Interpreter;
+    // Bytes all resources together may hold (buffers, textures with every level and face,
+    // render targets, depth-stencil surfaces, the back buffer). A creation that would pass it is
+    // refused with D3DERR_OUTOFVIDEOMEMORY before anything is allocated; Release gives the bytes
+    // back (a released resource that is still bound lives on until unbound, uncounted).
+    uint64_t memory_limit = kDefaultMemoryLimit;
 };
 
 struct DrawStatistics {
@@ -182,6 +199,9 @@ public:
     [[nodiscard]] bool has_resource(const std::string& name) const { return resources_.count(name) != 0; }
     [[nodiscard]] uint32_t frames_presented() const { return frame_; }
     [[nodiscard]] const DrawStatistics& statistics() const { return stats_; }
+    // Bytes the named resources hold now (counted against DeviceOptions::memory_limit).
+    [[nodiscard]] uint64_t memory_used() const { return memory_used_; }
+    [[nodiscard]] uint64_t memory_limit() const { return options_.memory_limit; }
     [[nodiscard]] const SamplerState& sampler_state(uint32_t sampler) const { return sampler_states_.at(sampler); }
     [[nodiscard]] const std::array<float, 4>& vertex_shader_constant_f(uint32_t reg) const { return vs_f_.at(reg); }
     [[nodiscard]] const std::array<float, 4>& pixel_shader_constant_f(uint32_t reg) const { return ps_f_.at(reg); }
@@ -197,6 +217,9 @@ private:
     struct Draw;
     CallResult create_shader(const std::string& name, isa::Program program, isa::ShaderType type);
     CallResult add_resource(const std::string& name, std::shared_ptr<Resource> resource);
+    // Refuses (D3DERR_OUTOFVIDEOMEMORY, "WHAT needs N bytes; ...") when `bytes` more would pass
+    // the memory limit.
+    CallResult reserve_memory(const std::string& what, uint64_t bytes) const;
     std::shared_ptr<Resource> find(const std::string& name) const;
     CallResult run_draw(PrimitiveType type, uint32_t primitive_count, std::vector<uint32_t> draw_vertices,
                         std::span<const VertexStream> streams);
@@ -225,6 +248,7 @@ private:
     bool in_scene_ = false;
     uint32_t frame_ = 0;
     DrawStatistics stats_{};
+    uint64_t memory_used_ = 0;
     TextureSampler sampler_;
     std::unique_ptr<WorkerPool> pool_;  // the tile threads, started by the first draw
 };

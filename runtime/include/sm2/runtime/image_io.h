@@ -25,7 +25,16 @@ struct Image {
     uint32_t width = 0, height = 0;
     std::vector<float> rgba;  // width * height * 4
 };
-[[nodiscard]] Image read_image(const std::string& path);
+// What read_image accepts, checked from the header before any pixel is allocated: sides up to
+// max_side and width x height x 16 bytes (float RGBA) up to max_bytes (default 16384 per side,
+// 1 GiB: an 8192x8192 image). The file must be a regular file of at most kMaxImageFileBytes.
+struct ImageReadLimits {
+    uint64_t max_side = 16384;
+    uint64_t max_bytes = uint64_t{1} << 30;
+};
+// PNG, TGA, EXR, ... through OpenImageIO; DDS through texture_io's reader (level 0 of a 2D
+// texture). Throws ImageIoError with the path and the reason.
+[[nodiscard]] Image read_image(const std::string& path, const ImageReadLimits& limits = {});
 
 struct ImageDifference {
     double max_abs_error = 0;      // over all channels

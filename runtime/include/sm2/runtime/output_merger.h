@@ -55,8 +55,10 @@ struct RenderTargets {
 // §13 with a vertex shader: table fog (LINEAR/EXP/EXP2 of the pixel depth) when FOGTABLEMODE is
 // not NONE, else the interpolated oFog.x; clamped to [0, 1]. 1 = no fog.
 [[nodiscard]] float fog_factor(const OutputMergerState& state, float vertex_fog, float depth);
-// `alpha FUNC ref` with alpha = oC0.a clamped to [0, 1] (NaN fails every test but ALWAYS).
-[[nodiscard]] bool alpha_test_passes(const OutputMergerState& state, float alpha);
+// `alpha FUNC ref` with alpha = oC0.a, clamped to [0, 1] when render target 0 clamps (UNORM and
+// the other fixed-point formats) and as written on a float target (R16F .. A32B32G32R32F): there
+// 1.5 passes GREATER 255 and -0.25 passes LESS 0. NaN fails every test but ALWAYS.
+[[nodiscard]] bool alpha_test_passes(const OutputMergerState& state, float alpha, bool target_clamps);
 // One blend (§12): src = shader colour, dst = stored colour. `fixed_point` clamps src and the
 // result to [0, 1].
 [[nodiscard]] Vec4 blend(const BlendState& state, const Vec4& src, const Vec4& dst, bool fixed_point);

@@ -40,7 +40,9 @@ struct ReplayDiagnostic {
     size_t record = 0;       // 1-based record (statement) number, for binary streams
     std::string call;        // "SetRenderState"
     std::string message;     // without the call name
-    // "file:line: D3DERR_INVALIDCALL: Call: message" ("file: record N: ..." without a line)
+    CallError code = CallError::InvalidCall;
+    // "file:line: D3DERR_INVALIDCALL: Call: message" ("file: record N: ..." without a line;
+    // D3DERR_OUTOFVIDEOMEMORY or E_OUTOFMEMORY for resources over the memory limit)
     [[nodiscard]] std::string to_string() const;
 };
 
@@ -55,6 +57,10 @@ struct FrameStats {
 struct ReplayOptions {
     std::string file_name = "<input>";  // for diagnostics
     std::string base_dir = ".";         // LoadTexture paths are relative to it (the stream's folder)
+    // LoadTexture paths must resolve inside this folder (empty: base_dir): no absolute paths, no
+    // `..` or symbolic link leaving it (file_io.h resolve_inside). SaveSurface paths likewise
+    // stay inside DeviceOptions::output_dir.
+    std::string root_dir;
     ShaderAssembler assembler;          // empty: asm heredocs are refused
     // Called after each statement with (statements done, total) during replay(); may be empty.
     std::function<void(size_t, size_t)> progress;
