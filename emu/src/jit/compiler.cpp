@@ -133,7 +133,7 @@ Host* create_host() {
         host->error = "cannot detect the host target: " + message(machine.takeError());
         return host;
     }
-    machine->setCodeGenOptLevel(llvm::CodeGenOpt::Default);
+    machine->setCodeGenOptLevel(llvm::CodeGenOpt::Less);
     // Every rounding as written: never a fused multiply-add.
     machine->getOptions().AllowFPOpFusion = llvm::FPOpFusion::Strict;
     machine->getOptions().UnsafeFPMath = false;
