@@ -62,7 +62,8 @@ for stream in "${streams[@]}"; do
   seconds=$(sed -n 's/.* calls in \([0-9.]*\) s.*/\1/p' "$dir/replay.log" | tail -n 1)
   printf '%s\t%s\t%s\n' "$name" "$status" "${seconds:-0}" >> "$runs"
   if [ "$status" = ok ]; then
-    echo "ok    $dir/ ($(ls "$dir"/frame_*.png 2>/dev/null | wc -l) frames, ${seconds} s)"
+    frames=$(ls "$dir"/frame_*.png 2>/dev/null | wc -l)
+    echo "ok    $dir/ ($frames frame$([ "$frames" = 1 ] || echo s), ${seconds} s)"
   else
     echo "FAIL  $name (see $dir/replay.log)"
     tail -n 5 "$dir/replay.log" | sed 's/^/      /'

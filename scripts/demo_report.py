@@ -120,7 +120,7 @@ def main():
     print("%-*s  %6s  %9s  %7s" % (width, "scene", "frames", "time (s)", "probes"))
     for s in scenes:
         print("%-*s  %6d  %9.3f  %7s%s" % (width, s["name"], len(s["frames"]), s["seconds"],
-                                           "%d/%d" % (s["probes_passed"], s["probes"]),
+                                           "%d/%d" % (s["probes_passed"], s["probes"]) if s["probes"] else "-",
                                            "" if s["ok"] else "  replay FAILED"))
     for line in failures:
         print("FAIL  " + line)
