@@ -11,6 +11,7 @@ packages=(
   libcli11-dev
   nlohmann-json3-dev                # sm2 run --json
   libglm-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest   # the Python module sm2emu and its tests
   libopenimageio-dev
   glslang-dev glslang-tools spirv-tools
 )

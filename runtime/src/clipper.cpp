@@ -4,6 +4,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/common.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/vec4.hpp>
+
 namespace sm2::runtime {
 namespace {
 
@@ -52,9 +56,11 @@ uint32_t outcode(const ClipVertex& v, uint32_t planes, const ClipState& s) {
     return code;
 }
 
-// (1 - t)*a + t*b in double: exact at both ends, no cancellation between huge and tiny values.
-float lerp(float a, float b, double t) {
-    return static_cast<float>((1.0 - t) * a + t * static_cast<double>(b));
+// a*(1 - t) + b*t in double, rounded once to float (glm::mix with a double t): exact at both
+// ends, no cancellation between huge and tiny values.
+Vec4 lerp(const Vec4& a, const Vec4& b, double t) {
+    const glm::vec4 r = glm::mix(glm::make_vec4(a.data()), glm::make_vec4(b.data()), t);
+    return {r.x, r.y, r.z, r.w};
 }
 
 // The point where the edge from `in` (distance din >= 0) to `out` (dout < 0) meets the plane.
@@ -62,12 +68,10 @@ ClipVertex intersect(const ClipVertex& in, const ClipVertex& out, double din, do
                      unsigned plane, const ClipState& s) {
     const double t = din / (din - dout);
     ClipVertex r;
-    for (unsigned c = 0; c < 4; ++c) r.position[c] = lerp(in.position[c], out.position[c], t);
-    for (unsigned v = 0; v < kVaryingCount; ++v) {
-        if (!(s.varying_mask >> v & 1u)) continue;
-        for (unsigned c = 0; c < 4; ++c) r.varyings[v][c] = lerp(in.varyings[v][c], out.varyings[v][c], t);
-    }
-    r.point_size = lerp(in.point_size, out.point_size, t);
+    r.position = lerp(in.position, out.position, t);
+    for (unsigned v = 0; v < kVaryingCount; ++v)
+        if (s.varying_mask >> v & 1u) r.varyings[v] = lerp(in.varyings[v], out.varyings[v], t);
+    r.point_size = glm::mix(in.point_size, out.point_size, t);
     float& x = r.position[0];
     float& y = r.position[1];
     float& z = r.position[2];
