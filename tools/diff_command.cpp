@@ -113,9 +113,19 @@ int run_diff(const DiffOptions& o) {
     }
 }
 
-std::string not_nan(const std::string& text) {
+// Range checks with readable messages (CLI11's own print the range's bound, DBL_MAX in full).
+// NaN is refused too: every comparison with it is false, so a NaN tolerance would make every
+// pixel equal.
+std::string non_negative(const std::string& text) {
     double v = 0;
-    if (CLI::detail::lexical_cast(text, v) && std::isnan(v)) return "'" + text + "' is not a number";
+    if (!CLI::detail::lexical_cast(text, v) || std::isnan(v)) return "'" + text + "' is not a number";
+    if (v < 0) return "'" + text + "' is negative: give 0 or more";
+    return {};
+}
+std::string positive(const std::string& text) {
+    double v = 0;
+    if (!CLI::detail::lexical_cast(text, v) || std::isnan(v)) return "'" + text + "' is not a number";
+    if (!(v > 0)) return "'" + text + "' is not positive: give a number above 0";
     return {};
 }
 
@@ -129,16 +139,12 @@ void add_diff_command(CLI::App& app, int& status) {
     cmd->add_option("a", o->a, "First image (PNG, TGA, EXR, DDS, ... anything OpenImageIO reads; '-' for stdin)")
         ->required();
     cmd->add_option("b", o->b, "Second image, same size ('-' for stdin)")->required();
-    // CLI11's NonNegativeNumber and PositiveNumber let NaN through (every comparison with it is
-    // false), and a NaN tolerance would make every pixel equal.
     cmd->add_option("--tolerance", o->tolerance, "Per-channel absolute difference allowed (default 0)")
-        ->check(CLI::NonNegativeNumber)
-        ->check(CLI::Validator(not_nan, "NOT NAN", "not NaN"));
+        ->check(CLI::Validator(non_negative, "NUMBER >= 0", "non-negative"));
     cmd->add_option("--heatmap", o->heatmap, "Write a heat map of |a - b| (black = equal, red = scale or more)");
     cmd->add_option("--heatmap-scale", o->heatmap_scale,
                     "Error shown as full red (default: the max abs error)")
-        ->check(CLI::PositiveNumber)
-        ->check(CLI::Validator(not_nan, "NOT NAN", "not NaN"));
+        ->check(CLI::Validator(positive, "NUMBER > 0", "positive"));
     cmd->callback([o, &status] { status = run_diff(*o); });
 }
 

@@ -474,7 +474,14 @@ TEST(CliReplay, BadArgumentsAreStatus2) {
     EXPECT_EQ(sm2("bench s.sm2cs --repeat 0").status, 2);
     EXPECT_EQ(sm2("bench s.sm2cs --repeat x").status, 2);
     EXPECT_EQ(sm2("diff a.png").status, 2);
-    EXPECT_EQ(sm2("diff a.png b.png --tolerance -1").status, 2);
+    // Range errors say what is wrong in a few words (CLI11's own printed DBL_MAX in full).
+    const auto negative = sm2("diff a.png b.png --tolerance -1");
+    EXPECT_EQ(negative.status, 2);
+    EXPECT_NE(negative.err.find("'-1' is negative: give 0 or more"), std::string::npos) << negative.err;
+    EXPECT_LT(negative.err.size(), 200u) << negative.err;
+    const auto zero_scale = sm2("diff a.png b.png --heatmap-scale 0");
+    EXPECT_EQ(zero_scale.status, 2);
+    EXPECT_NE(zero_scale.err.find("'0' is not positive"), std::string::npos) << zero_scale.err;
     auto help = sm2("--help");
     EXPECT_EQ(help.status, 0);
     for (const char* command : {"replay", "bench", "diff"}) EXPECT_NE(help.out.find(command), std::string::npos) << command;
