@@ -543,18 +543,45 @@ struct BlockLanes {
 
 using BlockLevels = TextureSampler::BlockLevels;
 
-// Channel positions of the 32-bit texel (r, g, b, a); -1: the channel reads 1.
-struct Rgba8Order {
-    std::array<int, 4> shift;
+// How the block path reads a channel (r, g, b, a) of a 32-bit texel, from the format's layout
+// (format_layout.h): a UNORM field of up to 16 bits (decoded as the layout's v / (2^n - 1)), a
+// 32-bit float, or a constant 0 or 1 for a channel the format lacks.
+struct BlockChannel {
+    enum class Kind : uint8_t { Zero, One, Unorm, Float } kind = Kind::Zero;
+    unsigned shift = 0;
+    uint32_t mask = 0;   // 2^n - 1 for Unorm
+    float max = 1.0f;    // float(2^n - 1)
 };
+using BlockFormat = std::array<BlockChannel, 4>;
 
-std::optional<Rgba8Order> rgba8_order(Format f) {
-    switch (f) {
-    case Format::A8R8G8B8: return Rgba8Order{{16, 8, 0, 24}};
-    case Format::X8R8G8B8: return Rgba8Order{{16, 8, 0, -1}};
-    case Format::A8B8G8R8: return Rgba8Order{{0, 8, 16, 24}};
-    default: return std::nullopt;
+// The formats of 4-byte texels whose channels are all of those kinds (A8R8G8B8, X8R8G8B8,
+// A8B8G8R8, X8B8G8R8, A2B10G10R10, A2R10G10B10, G16R16, R32F, ...).
+std::optional<BlockFormat> block_format(Format f) {
+    const layout::Layout lay = layout::layout_of(f);
+    const FormatInfo* info = format_info(f);
+    if (!lay.valid || info == nullptr || info->bytes != 4) return std::nullopt;
+    BlockFormat format;
+    for (unsigned k = 0; k < 4; ++k) {
+        const layout::Channel& ch = lay.rgba[k];
+        BlockChannel& b = format[k];
+        switch (ch.type) {
+        case layout::Type::Zero: b.kind = BlockChannel::Kind::Zero; break;
+        case layout::Type::One: b.kind = BlockChannel::Kind::One; break;
+        case layout::Type::Unorm:
+            if (ch.bits > 16) return std::nullopt;
+            b.kind = BlockChannel::Kind::Unorm;
+            b.shift = ch.shift;
+            b.mask = (1u << ch.bits) - 1u;
+            b.max = static_cast<float>(b.mask);
+            break;
+        case layout::Type::Float:
+            if (ch.shift != 0 || ch.bits != 32) return std::nullopt;
+            b.kind = BlockChannel::Kind::Float;
+            break;
+        default: return std::nullopt;
+        }
     }
+    return format;
 }
 
 bool block_address_supported(TextureAddress mode, bool all_pow2) {
@@ -563,7 +590,7 @@ bool block_address_supported(TextureAddress mode, bool all_pow2) {
 
 // Whether the 16-lane path covers this context; fills the level tables.
 bool block_supported(const Context& c, BlockLevels& levels) {
-    if (c.cube || c.volume || c.dxt || c.srgb || c.anisotropic || !rgba8_order(c.format)) return false;
+    if (c.cube || c.volume || c.dxt || c.srgb || c.anisotropic || !block_format(c.format)) return false;
     if (c.texture->levels() > BlockLevels::kMax || c.bpp != 4) return false;
     static const bool cpu_has_avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
                                       __builtin_cpu_supports("avx512vl");
@@ -672,14 +699,20 @@ SM2_AVX512 inline __m512i block_gather(__m512i x, __m512i y, __m512i row, __m512
     return _mm512_inserti64x4(_mm512_castsi256_si512(texels_lo), texels_hi, 1);
 }
 
-// The UNORM8 decode of format_layout.h (a missing alpha reads 1).
-SM2_AVX512 inline __m512 block_channel(__m512i texels, int shift) {
-    if (shift < 0) return _mm512_set1_ps(1.0f);
-    return unorm8::decode_at(texels, static_cast<unsigned>(shift));
+// Channel `ch` of 16 texels, as format_layout.h decodes it.
+SM2_AVX512 inline __m512 block_channel(__m512i texels, const BlockChannel& ch) {
+    switch (ch.kind) {
+    case BlockChannel::Kind::Zero: return _mm512_setzero_ps();
+    case BlockChannel::Kind::One: return _mm512_set1_ps(1.0f);
+    case BlockChannel::Kind::Float: return _mm512_castsi512_ps(texels);
+    case BlockChannel::Kind::Unorm: break;
+    }
+    const __m512i field = _mm512_and_si512(_mm512_srli_epi32(texels, ch.shift), _mm512_set1_epi32(static_cast<int32_t>(ch.mask)));
+    return unorm8::quotient(_mm512_cvtepi32_ps(field), ch.max);
 }
 
 // filter_level() on each lane's level `level` (POINT or LINEAR per lane).
-SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, const Rgba8Order& order, __m512i level,
+SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, const BlockFormat& format, __m512i level,
                                    const BlockLanes& in, __mmask16 linear, __m512 (&out)[4]) {
     const __m512i w = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.width.data()));
     const __m512i h = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.height.data()));
@@ -721,25 +754,29 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
     const __m512 w00 = _mm512_mul_ps(bx, by), w10 = _mm512_mul_ps(tx.a, by);
     const __m512 w01 = _mm512_mul_ps(bx, ty.a), w11 = _mm512_mul_ps(tx.a, ty.a);
     for (unsigned k = 0; k < 4; ++k) {
-        const int shift = order.shift[k];
-        __m512 r = _mm512_add_ps(_mm512_mul_ps(block_channel(t00, shift), w00), _mm512_mul_ps(block_channel(t10, shift), w10));
-        r = _mm512_add_ps(r, _mm512_mul_ps(block_channel(t01, shift), w01));
-        out[k] = _mm512_add_ps(r, _mm512_mul_ps(block_channel(t11, shift), w11));
+        const BlockChannel& ch = format[k];
+        const __m512 c00 = block_channel(t00, ch);
+        __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_channel(t10, ch), w10));
+        r = _mm512_add_ps(r, _mm512_mul_ps(block_channel(t01, ch), w01));
+        r = _mm512_add_ps(r, _mm512_mul_ps(block_channel(t11, ch), w11));
+        // POINT lanes read their texel as it is (filter_level() fetches it): the weighted sum
+        // equals it for finite non-negative values, not for a float texel beside an infinity.
+        out[k] = _mm512_mask_mov_ps(c00, linear, r);
     }
 }
 
 // The lookups of `in` (every lane valid: lanes without a pixel read level c.first at 0, 0).
 SM2_AVX512 void block_lookup(const Context& c, const BlockLevels& levels, const BlockLanes& in, __mmask16 used,
                              std::array<emu::FloatLanes, 4>& texels) {
-    const Rgba8Order order = *rgba8_order(c.format);
+    const BlockFormat format = *block_format(c.format);
     const __mmask16 linear = _mm512_cmpneq_epi32_mask(_mm512_load_si512(in.linear.data()), _mm512_setzero_si512());
     __m512 r[4];
-    block_filter_level(c, levels, order, _mm512_load_si512(in.l0.data()), in, linear, r);
+    block_filter_level(c, levels, format, _mm512_load_si512(in.l0.data()), in, linear, r);
     const __m512 frac = _mm512_load_ps(in.frac.data());
     const __mmask16 second = _mm512_cmp_ps_mask(frac, _mm512_setzero_ps(), _CMP_GT_OQ);
     if (second) {
         __m512 b[4];
-        block_filter_level(c, levels, order, _mm512_load_si512(in.l1.data()), in, linear, b);
+        block_filter_level(c, levels, format, _mm512_load_si512(in.l1.data()), in, linear, b);
         const __m512 keep = _mm512_sub_ps(_mm512_set1_ps(1.0f), frac);
         for (unsigned k = 0; k < 4; ++k)
             r[k] = _mm512_mask_mov_ps(r[k], second, _mm512_add_ps(_mm512_mul_ps(keep, r[k]), _mm512_mul_ps(frac, b[k])));

@@ -19,6 +19,17 @@ SM2_AVX512 inline __m512 decode(__m512 byte) {
     return _mm512_fmadd_ps(residual, reciprocal, q);
 }
 
+// The same for a field of n <= 16 bits: v / max with max = 2^n - 1, its reciprocal corrected
+// once by the residual; correctly rounded for every v of every n from 1 to 16 (checked
+// exhaustively by sampler_block_test).
+SM2_AVX512 inline __m512 quotient(__m512 value, float max) {
+    const __m512 divisor = _mm512_set1_ps(max);
+    const __m512 reciprocal = _mm512_set1_ps(1.0f / max);
+    const __m512 q = _mm512_mul_ps(value, reciprocal);
+    const __m512 residual = _mm512_fnmadd_ps(q, divisor, value);
+    return _mm512_fmadd_ps(residual, reciprocal, q);
+}
+
 // The byte at bit `shift` of each 32-bit texel, decoded.
 SM2_AVX512 inline __m512 decode_at(__m512i texels, unsigned shift) {
     const __m512i byte = _mm512_and_si512(_mm512_srli_epi32(texels, shift), _mm512_set1_epi32(0xFF));
