@@ -143,17 +143,21 @@ template <typename T>
 // byte of a 4-byte texel (A8R8G8B8, X8R8G8B8, A8B8G8R8, X8B8G8R8), read and written in place.
 // Channels the format lacks read as their layout says (X8: alpha 1) and store nothing (the
 // byte stays 0, as layout::encode leaves it).
+// valid: every stored channel an 8-bit UNORM in its own byte (the compiler-vectorized path and
+// the AVX-512 one); wide: every stored channel a UNORM field of up to 16 bits, none shared
+// (A2B10G10R10, A2R10G10B10, G16R16 too; the AVX-512 path only).
 struct Unorm8Texel {
-    bool valid = false;
-    std::array<int8_t, 4> shift{};  // bit of the channel's byte in the texel; -1: not stored
-    Vec4 missing{};                 // value read for a channel that is not stored
+    bool valid = false, wide = false;
+    std::array<int8_t, 4> shift{};   // lowest bit of the channel's field in the texel; -1: not stored
+    std::array<uint32_t, 4> mask{};  // 2^n - 1 of the channel's field
+    Vec4 missing{};                  // value read for a channel that is not stored
 };
-
 Unorm8Texel unorm8_layout(const FormatInfo& info) {
     Unorm8Texel t;
     const layout::Layout lay = layout::layout_of(info.format);
     if (!lay.valid || info.bytes != 4 || info.kind != FormatKind::Color) return t;
-    unsigned used = 0;
+    uint32_t used = 0;
+    bool bytes = true;
     for (unsigned c = 0; c < 4; ++c) {
         const layout::Channel ch = lay.rgba[c];
         t.shift[c] = -1;
@@ -161,12 +165,16 @@ Unorm8Texel unorm8_layout(const FormatInfo& info) {
             t.missing[c] = ch.type == layout::Type::One ? 1.0f : 0.0f;
             continue;
         }
-        if (ch.type != layout::Type::Unorm || ch.bits != 8 || ch.shift % 8 != 0 || ch.shift >= 32) return t;
-        if (used >> (ch.shift / 8) & 1u) return t;  // one byte for several channels (luminance)
-        used |= 1u << (ch.shift / 8);
+        if (ch.type != layout::Type::Unorm || ch.bits == 0 || ch.bits > 16 || ch.shift + ch.bits > 32) return t;
+        const uint32_t field = ((1u << ch.bits) - 1u) << ch.shift;
+        if (used & field) return t;  // one field for several channels (luminance)
+        used |= field;
         t.shift[c] = static_cast<int8_t>(ch.shift);
+        t.mask[c] = (1u << ch.bits) - 1u;
+        bytes = bytes && ch.bits == 8 && ch.shift % 8 == 0;
     }
-    t.valid = true;
+    t.wide = true;
+    t.valid = bytes;
     return t;
 }
 
@@ -314,7 +322,7 @@ SM2_AVX512 void merge_unorm8_avx512(const BlendState& b, const Unorm8Texel& fmt,
         }
         for (unsigned c = 0; c < 4; ++c) {
             const __m512 value = fmt.shift[c] < 0 ? _mm512_set1_ps(fmt.missing[c])
-                                                  : unorm8::decode_at(stored, static_cast<unsigned>(fmt.shift[c]));
+                                                  : unorm8::decode_field(stored, static_cast<unsigned>(fmt.shift[c]), fmt.mask[c]);
             _mm512_storeu_ps(dst[c].v.data(), value);
         }
     }
@@ -326,7 +334,8 @@ SM2_AVX512 void merge_unorm8_avx512(const BlendState& b, const Unorm8Texel& fmt,
         if (fmt.shift[c] < 0) continue;
         // A masked channel stores what it read (which encodes back to the same byte).
         const __m512 value = _mm512_loadu_ps((mask >> c & 1u ? out[c] : dst[c]).v.data());
-        packed = _mm512_or_si512(packed, _mm512_slli_epi32(unorm8::encode(value), static_cast<unsigned>(fmt.shift[c])));
+        packed = _mm512_or_si512(packed, _mm512_slli_epi32(unorm8::encode(value, static_cast<double>(fmt.mask[c])),
+                                                           static_cast<unsigned>(fmt.shift[c])));
     }
     if (row_run >= 0) {
         _mm256_mask_storeu_epi32(run0, row0, _mm512_castsi512_si256(_mm512_permutexvar_epi32(to_row0, packed)));
@@ -487,7 +496,7 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
 
         if (!srgb && !in.generic_path) {
             const Unorm8Texel& fmt = unorm8_texel(*info);
-            if (fmt.valid && distinct_pixels(key, misplaced == 0)) {
+            if ((fmt.valid || (fmt.wide && cpu_has_avx512())) && distinct_pixels(key, misplaced == 0)) {
                 if (cpu_has_avx512() && surface->bytes().size() <= size_t{INT32_MAX}) {
                     std::array<int32_t, kLanes> offset;  // used for the lanes in `write` only
                     const auto pitch = static_cast<uint32_t>(surface->row_pitch());

@@ -2,6 +2,8 @@
 // sampler's and the output merger's block paths (callers check the CPU before calling).
 #pragma once
 
+#include <cstdint>
+
 #include <immintrin.h>
 
 // Callers check avx512f, avx512dq and avx512vl.
@@ -36,10 +38,17 @@ SM2_AVX512 inline __m512 decode_at(__m512i texels, unsigned shift) {
     return decode(_mm512_cvtepi32_ps(byte));
 }
 
-// Encode of a value already in [0, 1]: floor(double(v) * 255 + 0.5), exact in double (24 + 8
-// significant bits) and truncated (the sum is positive), as format_layout.h's encode.
-SM2_AVX512 inline __m512i encode(__m512 unit) {
-    const __m512d scale = _mm512_set1_pd(255.0), half = _mm512_set1_pd(0.5);
+// The field (v >> shift) & mask of each 32-bit texel, decoded as v / mask.
+SM2_AVX512 inline __m512 decode_field(__m512i texels, unsigned shift, uint32_t mask) {
+    const __m512i field = _mm512_and_si512(_mm512_srli_epi32(texels, shift), _mm512_set1_epi32(static_cast<int32_t>(mask)));
+    return quotient(_mm512_cvtepi32_ps(field), static_cast<float>(mask));
+}
+
+// Encode of a value already in [0, 1] into a field of maximum `max` (255 for 8 bits, at most
+// 65535): floor(double(v) * max + 0.5), exact in double (24 + 16 significant bits) and
+// truncated (the sum is positive), as format_layout.h's encode.
+SM2_AVX512 inline __m512i encode(__m512 unit, double max = 255.0) {
+    const __m512d scale = _mm512_set1_pd(max), half = _mm512_set1_pd(0.5);
     const __m512d lo = _mm512_add_pd(_mm512_mul_pd(_mm512_cvtps_pd(_mm512_castps512_ps256(unit)), scale), half);
     const __m512d hi =
         _mm512_add_pd(_mm512_mul_pd(_mm512_cvtps_pd(_mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(unit), 1))), scale), half);
