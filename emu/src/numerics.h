@@ -99,6 +99,9 @@ inline float pow_float(float base, float exponent) {
     p = p * s2 + 2.0;
     const double log2a = e + (p * s) * 1.4426950408889634;
     double t = static_cast<double>(exponent) * log2a;
+    // (A NaN t, from a NaN operand or 0 * inf, has its result chosen by the special cases
+    // below; 0 keeps the integer conversion defined.)
+    t = t == t ? t : 0.0;
     t = t < -200.0 ? -200.0 : t;
     t = t > 200.0 ? 200.0 : t;
     const double n = (t + 6755399441055744.0) - 6755399441055744.0;
