@@ -8,6 +8,10 @@ namespace sm2::tools {
 
 enum ExitStatus : int { kOk = 0, kInvalidInput = 1, kBadUsage = 2 };
 
+// The engine `run`, `replay` and `bench` use without --engine: native code where the build has
+// the JIT (the interpreter otherwise; both give the same bytes).
+inline constexpr const char* kDefaultEngine = "jit";
+
 // Shader text and bytecode: `asm`, `dis`, `validate`.
 void add_shader_commands(CLI::App& app, int& status);
 

@@ -50,9 +50,8 @@ std::string fixed(double v, int decimals) {
 // ---------------------------------------------------------------------------------------------
 // sm2 replay
 
-// The JIT is the default: it gives the interpreter's bytes on every sample scene and on the
-// random programs of tests/emu/jit (a build without LLVM interprets).
-constexpr const char* kDefaultEngine = "jit";
+// The JIT is the default (kDefaultEngine, commands.h): it gives the interpreter's bytes on every
+// sample scene and on the random programs of tests/emu/jit (a build without LLVM interprets).
 
 // The numeric modes of a replay (docs/numerics.md): shader precision, transcendentals and the
 // sampler's filter weights. Threads default to every core (the image does not depend on them).

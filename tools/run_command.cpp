@@ -38,7 +38,7 @@ struct RunOptions {
     unsigned lanes = 1;
     bool json = false;
     bool trace = false;
-    std::string engine = "jit";
+    std::string engine = kDefaultEngine;
 };
 
 // Shortest text that reads back to the same value in the run's storage type (float or double).
