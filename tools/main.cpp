@@ -39,6 +39,11 @@ constexpr Examples kExamples[] = {
     {"cs dump", "Examples:\n"
                 "  sm2 cs dump scene.sm2cb\n"
                 "  sm2 cs dump scene.sm2cb -o scene.sm2cs\n"},
+    {"trace", "Examples:\n"
+              "  sm2 trace dump app.trace               one call per line on stdout\n"},
+    {"trace dump", "Examples:\n"
+                   "  sm2 trace dump app.trace\n"
+                   "  sm2 trace dump app.trace -o app.txt\n"},
     {"replay", "Examples:\n"
                "  sm2 replay samples/scenes/09_lake.sm2cs -o out/lake\n"
                "  sm2 replay scene.sm2cb -o out/scene --overwrite --threads 1 --engine interpreter\n"
@@ -107,6 +112,7 @@ int main(int argc, char** argv) {
     sm2::tools::add_shader_commands(app, status);
     sm2::tools::add_run_command(app, status);
     sm2::tools::add_stream_commands(app, status);
+    sm2::tools::add_trace_commands(app, status);
     sm2::tools::add_replay_commands(app, status);
     sm2::tools::add_diff_command(app, status);
     for (const auto& e : kExamples)
