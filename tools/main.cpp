@@ -39,6 +39,9 @@ constexpr Examples kExamples[] = {
     {"cs dump", "Examples:\n"
                 "  sm2 cs dump scene.sm2cb\n"
                 "  sm2 cs dump scene.sm2cb -o scene.sm2cs\n"},
+    {"cs import", "Examples:\n"
+                  "  sm2 cs import app.trace -o app.sm2cs   text; the report on stderr\n"
+                  "  sm2 cs import app.trace -o app.sm2cb   binary\n"},
     {"trace", "Examples:\n"
               "  sm2 trace dump app.trace               one call per line on stdout\n"},
     {"trace dump", "Examples:\n"

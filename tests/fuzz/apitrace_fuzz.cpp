@@ -1,5 +1,6 @@
 // Fuzz target: arbitrary bytes as an apitrace trace, in the Snappy container when they start with
 // "at", else as the bare event stream (where mutations reach the signatures and values).
+// Then the D3D9 importer on the same bytes (sm2 cs import).
 // Properties: never a crash, a hang or an allocation the input does not back; every call read
 // prints; an error names a byte inside the data read; a bare stream yields at most one call per
 // two bytes (an enter and a leave event take at least that).
@@ -9,6 +10,7 @@
 #include <span>
 
 #include "sm2/runtime/apitrace.h"
+#include "sm2/runtime/apitrace_import.h"
 
 using namespace sm2::runtime::apitrace;
 
@@ -40,5 +42,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     if (!container && calls > size / 2 + 1) std::abort();
     if (reader->next()) std::abort();  // the end stays the end
+
+    // The importer on the same bytes: every call is imported, accepted or skipped, and the stream
+    // it makes prints and packs.
+    auto again = Reader::open(bytes, error, true);
+    if (!again) std::abort();
+    const ImportResult imported = import_d3d9(*again);
+    const ImportReport& report = imported.report;
+    if (report.calls != calls || report.imported + report.accepted + report.skipped != report.calls) std::abort();
+    (void)report.to_string();
+    (void)sm2::runtime::cs::to_text(imported.stream);
+    (void)sm2::runtime::cs::pack(imported.stream);
     return 0;
 }
