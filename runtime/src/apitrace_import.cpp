@@ -636,6 +636,7 @@ private:
         if (!l) throw Skip{"a copy to 0x" + hex(dest) + ", which no Lock returned"};
         const Object& o = object(l->object, "the locked object");
         if (o.kind == Object::Kind::VertexBuffer || o.kind == Object::Kind::IndexBuffer) {
+            if (dest - start > 0xFFFFFFFFull) throw Skip{"a copy far past its lock"};
             emit("Lock", {ident(o.name), integer(static_cast<int64_t>(l->offset + (dest - start))), blob(bytes, cs::BlobType::Hex)});
             return true;
         }
@@ -646,6 +647,7 @@ private:
         if (!texture) throw Skip{"an upload to a surface that is not a texture level"};
         const FormatInfo* info = format_info(o.format);
         if (!info) throw Skip{"an upload in a format sm2emu does not have"};
+        if (l->level >= 32) throw Skip{"level " + std::to_string(l->level) + " does not exist"};
         const bool compressed = info->kind == FormatKind::Compressed;
         const uint64_t w = std::max<uint64_t>(1, o.width >> l->level), h = std::max<uint64_t>(1, o.height >> l->level);
         const uint64_t d = std::max<uint64_t>(1, o.depth >> l->level);
@@ -653,7 +655,10 @@ private:
         const uint64_t rows = compressed ? (h + 3) / 4 : h;
         const bool volume = o.kind == Object::Kind::VolumeTexture;
         const uint64_t slice_pitch = volume ? l->slice_pitch : rows * l->pitch;
-        if (l->pitch < row || slice_pitch < rows * l->pitch - (l->pitch - row))
+        // Pitches come from the trace: bounded by the copy before any arithmetic on them.
+        if (l->pitch > bytes.size() || slice_pitch > bytes.size() || o.width == 0 || o.height == 0)
+            throw Skip{"a pitch larger than the copy"};
+        if (l->pitch < row || (volume && d > 1 && slice_pitch < (rows - 1) * l->pitch + row))
             throw Skip{"a pitch smaller than a row"};
         const uint64_t need = (volume ? (d - 1) * slice_pitch : 0) + (rows - 1) * l->pitch + row;
         if (bytes.size() < need) throw Skip{"the copy holds " + std::to_string(bytes.size()) + " bytes, the level needs " + std::to_string(need)};

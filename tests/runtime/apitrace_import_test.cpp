@@ -174,6 +174,46 @@ TEST(ApitraceImport, UnsupportedKindsAreReportedOnceWithTheirFirstCall) {
               std::string::npos) << r.report.to_string();
 }
 
+// Texture uploads: LockRect/LockBox of whole levels with their memcpy become LockRect/LockBox
+// statements with the level's bytes (these captures' pitches are tight: 64x4 = 256, 16x4 = 64,
+// 8x4 = 32 with slices of 256), cube faces named.
+TEST(ApitraceImport, TextureUploadsBecomeLockRectAndLockBox) {
+    // ff_lit_cube 15 IDirect3DTexture9::LockRect(this = 0x3b05e0, Level = 0, Pitch = 256),
+    // 16 memcpy(src = blob(16384)): the checkerboard.
+    std::optional<Error> error;
+    auto reader = Reader::open_file(trace_path("ff_lit_cube.trace"), error);
+    ASSERT_TRUE(reader);
+    std::vector<std::byte> recorded;
+    while (auto c = reader->next())
+        if (c->number == 16) recorded = *c->arg("src")->blob();
+    ASSERT_EQ(recorded.size(), 16384u);
+    const ImportResult ff = import_file("ff_lit_cube");
+    const cs::Statement* lock = nullptr;
+    for (const auto& st : ff.stream.statements)
+        if (st.name == "LockRect") lock = &st;
+    ASSERT_TRUE(lock);
+    ASSERT_EQ(lock->arguments.size(), 3u);
+    EXPECT_EQ(lock->arguments[0].text, "tex_3b05e0");
+    EXPECT_EQ(lock->arguments[1].integer, 0);
+    EXPECT_EQ(lock->arguments[2].bytes, recorded);
+
+    // mixed_states 17..33: the six faces of cube 0x3c9a40 (16x16 X8R8G8B8), 36 LockBox of volume
+    // 0x3cc1d0 (8x8x4 A8R8G8B8).
+    const ImportResult ms = import_file("mixed_states");
+    std::vector<std::string> faces;
+    size_t box_bytes = 0;
+    for (const auto& st : ms.stream.statements) {
+        if (st.name == "LockRect" && st.arguments.at(0).text == "cube_3c9a40") {
+            faces.push_back(st.arguments.at(1).text);
+            EXPECT_EQ(st.arguments.at(3).bytes.size(), 1024u);
+        }
+        if (st.name == "LockBox" && st.arguments.at(0).text == "vol_3cc1d0") box_bytes = st.arguments.at(2).bytes.size();
+    }
+    EXPECT_EQ(faces, (std::vector<std::string>{"POSITIVE_X", "NEGATIVE_X", "POSITIVE_Y", "NEGATIVE_Y", "POSITIVE_Z",
+                                               "NEGATIVE_Z"}));
+    EXPECT_EQ(box_bytes, 8u * 8u * 4u * 4u);
+}
+
 // A trace cut inside its event stream: the calls before the cut are imported, and the error
 // names the byte where the data ended.
 TEST(ApitraceImport, TruncatedTraceStopsWithItsError) {
