@@ -116,8 +116,8 @@ struct Error {
 
 struct Limits {
     uint64_t max_chunk_bytes = uint64_t{64} << 20;  // one decompressed chunk (apitrace writes 1 MiB)
-    uint64_t max_call_bytes = uint64_t{256} << 20;  // blob and string bytes of one call
-    uint64_t max_call_values = uint64_t{1} << 22;  // value nodes of one call (each ~150 bytes in memory)
+    uint64_t max_call_bytes = uint64_t{256} << 20;  // blob and string bytes of one event (enter or leave)
+    uint64_t max_call_values = uint64_t{1} << 22;  // value nodes of one event (each ~150 bytes in memory)
     uint32_t max_depth = 64;                         // nesting of arrays, structs and reprs
     uint32_t max_pending_calls = 4096;               // calls entered and not yet left
     uint32_t max_signatures = 1u << 20;              // of each kind
