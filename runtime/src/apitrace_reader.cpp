@@ -82,9 +82,17 @@ public:
     }
 
 private:
+    // The next non-empty chunk; false at the end of the file. A loop, not recursion: a file of
+    // empty chunks must not grow the stack.
     bool refill() {
         if (!container_) return false;
-        if (file_pos_ == file_size_) return false;
+        while (file_pos_ < file_size_) {
+            load_chunk();
+            if (!chunk_.empty()) return true;
+        }
+        return false;
+    }
+    void load_chunk() {
         chunk_file_offset_ = file_pos_;
         if (file_size_ - file_pos_ < 4) fail("truncated chunk length at file offset " + std::to_string(file_pos_));
         uint8_t header[4];
@@ -116,8 +124,6 @@ private:
             fail("chunk at file offset " + std::to_string(chunk_file_offset_) + " does not decompress");
         chunk_ = storage_;
         pos_ = 0;
-        if (chunk_.empty()) return refill();  // an empty chunk: go on with the next
-        return true;
     }
 
     // `n` bytes of the file at file_pos_ (checked to be there), advancing it.

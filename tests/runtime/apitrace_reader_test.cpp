@@ -338,6 +338,24 @@ TEST(ApitraceReader, MalformedContainersNameTheChunk) {
     EXPECT_NE(first_error(corrupt, false), "");
 }
 
+// A million empty chunks before the data: skipped in a loop (no recursion to overflow the stack).
+TEST(ApitraceReader, EmptyChunksAreSkipped) {
+    const auto stream = Writer::v6().enter(0, "f", {}).byte(0).leave(0).byte(0).out;
+    auto file = container(stream);
+    std::string empty;
+    snappy::Compress("", 0, &empty);  // one byte: the length 0
+    std::vector<std::byte> chunks{std::byte{'a'}, std::byte{'t'}};
+    const std::byte empty_chunk[5] = {std::byte{1}, std::byte{0}, std::byte{0}, std::byte{0}, std::byte(static_cast<uint8_t>(empty[0]))};
+    ASSERT_EQ(empty.size(), 1u);
+    for (int i = 0; i < 1000000; ++i) chunks.insert(chunks.end(), std::begin(empty_chunk), std::end(empty_chunk));
+    chunks.insert(chunks.end(), file.begin() + 2, file.end());
+    std::optional<Error> error;
+    const auto calls = read_all(chunks, error);
+    ASSERT_FALSE(error) << error->to_string();
+    ASSERT_EQ(calls.size(), 1u);
+    EXPECT_EQ(to_text(calls[0]), "0 f()");
+}
+
 // Every prefix of a real trace's event stream, and of its container: calls, then either a clean
 // end or an error at most at the prefix's end. Never a crash (the sanitizer build runs this too).
 TEST(ApitraceReader, EveryPrefixOfARealTraceEndsCleanlyOrWithAnError) {
