@@ -246,7 +246,7 @@ struct Reader::Impl {
         for (uint64_t i = 0; i < n; ++i) sig->args.push_back(read_string());
         return functions.emplace(id, std::move(sig)).first->second;
     }
-    std::shared_ptr<const EnumSig> enum_sig() {
+    std::shared_ptr<const EnumSig> enum_sig(uint32_t depth) {
         const uint64_t id = read_uint();
         if (auto it = enums.find(id); it != enums.end()) return it->second;
         check_room(enums, "enum");
@@ -260,7 +260,7 @@ struct Reader::Impl {
             }
         } else {
             std::string name = read_string();
-            Value v = value(0);
+            Value v = value(depth + 1);  // nested: an old enum signature holds a value
             sig->values.emplace_back(std::move(name), v.as_int().value_or(0));
         }
         return enums.emplace(id, std::move(sig)).first->second;
@@ -324,7 +324,7 @@ struct Reader::Impl {
         }
         case kTypeEnum:
             v.kind = Value::Kind::Enum;
-            v.enum_sig = enum_sig();
+            v.enum_sig = enum_sig(depth);
             if (header.version >= 3) {
                 v.sint = read_sint();
             } else {

@@ -338,6 +338,30 @@ TEST(ApitraceReader, MalformedContainersNameTheChunk) {
     EXPECT_NE(first_error(corrupt, false), "");
 }
 
+// Version 2's enum signatures hold a value, which may be an enum with a new signature: nested
+// that way, the depth limit still holds.
+TEST(ApitraceReader, OldEnumSignaturesNestWithinTheDepthLimit) {
+    Writer w;
+    w.uint(2);                                  // version 2: no properties, thread in a detail
+    w.byte(0).uint(0).str("f").uint(1).str("a");  // enter, signature 0 "f"(a)
+    w.byte(1).uint(0);
+    for (int i = 0; i < 100; ++i) w.byte(9).uint(static_cast<uint64_t>(i)).str("E");  // enum, sig i, name "E", value:
+    w.byte(4).uint(7);
+    std::optional<Error> error;
+    (void)read_all(w.out, error, true);
+    ASSERT_TRUE(error);
+    EXPECT_EQ(error->message, "values nested deeper than 64");
+    // One level: the value is the signature's.
+    Writer one;
+    one.uint(2).byte(0).uint(0).str("f").uint(1).str("a").byte(1).uint(0).byte(9).uint(0).str("E").byte(4).uint(7).byte(0);
+    one.byte(1).uint(0).byte(0);
+    const auto calls = read_all(one.out, error, true);
+    ASSERT_FALSE(error) << error->to_string();
+    ASSERT_EQ(calls.size(), 1u);
+    EXPECT_EQ(to_text(calls[0]), "0 f(a = E)");
+    EXPECT_EQ(calls[0].arg("a")->as_int(), 7);
+}
+
 // A million empty chunks before the data: skipped in a loop (no recursion to overflow the stack).
 TEST(ApitraceReader, EmptyChunksAreSkipped) {
     const auto stream = Writer::v6().enter(0, "f", {}).byte(0).leave(0).byte(0).out;
