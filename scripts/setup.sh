@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev
   nlohmann-json3-dev                # sm2 run --json
+  libsnappy-dev                     # apitrace trace files (runtime/src/apitrace_reader.cpp)
   libglm-dev
   pybind11-dev python3-dev python3-numpy python3-pytest   # the Python module sm2emu and its tests
   libopenimageio-dev

@@ -21,6 +21,9 @@ void add_run_command(CLI::App& app, int& status);
 // Command streams: `cs pack`, `cs dump`.
 void add_stream_commands(CLI::App& app, int& status);
 
+// apitrace trace files: `trace dump`.
+void add_trace_commands(CLI::App& app, int& status);
+
 // Image comparison: `diff`.
 void add_diff_command(CLI::App& app, int& status);
 

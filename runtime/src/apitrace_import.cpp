@@ -1,0 +1,711 @@
+// apitrace D3D9 traces to command streams (runtime/include/sm2/runtime/apitrace_import.h,
+// docs/apitrace.md "Import").
+#include "sm2/runtime/apitrace_import.h"
+
+#include <algorithm>
+#include <bit>
+#include <cinttypes>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <unordered_map>
+
+#include "sm2/runtime/d3d9_names.h"
+#include "sm2/runtime/formats.h"
+
+namespace sm2::runtime::apitrace {
+
+namespace {
+
+// Thrown while translating one call: it is skipped for `reason`.
+struct Skip {
+    std::string reason;
+};
+
+constexpr uint32_t kLockReadOnly = 0x10;
+constexpr uint32_t kUsageRenderTarget = 0x1;
+
+struct Object {
+    enum class Kind : uint8_t { Device, Shader, Declaration, VertexBuffer, IndexBuffer, Texture, CubeTexture,
+                                VolumeTexture, RenderTarget, DepthStencil, Surface, StateBlock, ReadBack };
+    Kind kind = Kind::Device;
+    std::string name;          // the stream's handle (Surface: its texture's, or backbuffer/autodepth)
+    bool owned = true;         // created by a statement: Release at refcount 0 releases it
+    Format format = Format::Unknown;
+    uint32_t width = 0, height = 0, depth = 1;
+    uint32_t level = 0;        // Surface: the texture level it is
+    int32_t face = -1;         // Surface of a cube texture: the face
+};
+
+// An open Lock/LockRect/LockBox, waiting for the memcpy of its bytes.
+struct Lock {
+    uint64_t object = 0;       // the locked object's pointer
+    uint64_t offset = 0;       // buffers: OffsetToLock
+    uint32_t level = 0;
+    int32_t face = -1;
+    uint64_t pitch = 0, slice_pitch = 0;
+    bool whole = true;         // textures: no sub-rectangle or box
+};
+
+cs::Value ident(std::string_view text) {
+    cs::Value v;
+    v.kind = cs::Value::Kind::Identifier;
+    v.text = std::string(text);
+    return v;
+}
+cs::Value integer(int64_t value, bool hex = false) {
+    cs::Value v;
+    v.kind = cs::Value::Kind::Integer;
+    v.integer = value;
+    v.hex = hex;
+    return v;
+}
+cs::Value real(float value) {
+    cs::Value v;
+    v.kind = cs::Value::Kind::Float;
+    v.float_bits = std::bit_cast<uint32_t>(value);
+    return v;
+}
+cs::Value blob(std::vector<std::byte> bytes, cs::BlobType type) {
+    cs::Value v;
+    v.kind = cs::Value::Kind::Blob;
+    v.blob_type = type;
+    v.bytes = std::move(bytes);
+    return v;
+}
+cs::Value tuple(std::vector<cs::Value> items) {
+    cs::Value v;
+    v.kind = cs::Value::Kind::Tuple;
+    v.items = std::move(items);
+    return v;
+}
+
+std::string hex(uint64_t value) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%" PRIx64, value);
+    return buf;
+}
+
+// The method name after "Interface::" ("Clear"), or the whole name.
+std::string_view method_of(std::string_view name) {
+    const size_t at = name.rfind("::");
+    return at == std::string_view::npos ? name : name.substr(at + 2);
+}
+
+class Importer {
+public:
+    ImportResult run(Reader& reader) {
+        while (auto call = reader.next()) {
+            ++result_.report.calls;
+            translate(*call);
+        }
+        result_.error = reader.error();
+        return std::move(result_);
+    }
+
+private:
+    // --- arguments ---
+    static const Value& arg(const Call& c, std::string_view name) {
+        const Value* v = c.arg(name);
+        if (!v) throw Skip{"argument " + std::string(name) + " is missing"};
+        return *v;
+    }
+    static int64_t num(const Call& c, std::string_view name) {
+        const Value& v = arg(c, name);
+        if (auto i = v.as_int()) return *i;
+        throw Skip{"argument " + std::string(name) + " is not an integer"};
+    }
+    static uint32_t u32(const Call& c, std::string_view name) {
+        const int64_t v = num(c, name);
+        if (v < 0 || v > 0xFFFFFFFFll) throw Skip{"argument " + std::string(name) + " = " + std::to_string(v) + " is out of range"};
+        return static_cast<uint32_t>(v);
+    }
+    // A DWORD recorded signed or unsigned.
+    static uint32_t dword(const Call& c, std::string_view name) {
+        const int64_t v = num(c, name);
+        if (v < std::numeric_limits<int32_t>::min() || v > 0xFFFFFFFFll)
+            throw Skip{"argument " + std::string(name) + " = " + std::to_string(v) + " is out of range"};
+        return static_cast<uint32_t>(v);
+    }
+    static float f32(const Value& v, std::string_view what) {
+        if (v.kind == Value::Kind::Float || v.kind == Value::Kind::Double) return static_cast<float>(v.real);
+        if (auto i = v.as_int()) return static_cast<float>(*i);
+        throw Skip{std::string(what) + " is not a number"};
+    }
+    // The pointee of an output pointer (`ppShader = &0x3b0710`) or a pointer to a struct.
+    static const Value& deref(const Call& c, std::string_view name) {
+        const Value& v = arg(c, name);
+        if (v.kind == Value::Kind::Array && v.items.size() == 1) return v.items[0];
+        throw Skip{"argument " + std::string(name) + " was not recorded as a pointer to one value"};
+    }
+    static uint64_t out_pointer(const Call& c, std::string_view name) {
+        const Value& v = deref(c, name);
+        if (v.kind != Value::Kind::Pointer) throw Skip{"argument " + std::string(name) + " holds no object"};
+        return v.uint;
+    }
+    static int64_t member(const Value& s, std::string_view name) {
+        const Value* m = s.member(name);
+        if (!m) throw Skip{"member " + std::string(name) + " is missing"};
+        if (auto i = m->as_int()) return *i;
+        throw Skip{"member " + std::string(name) + " is not an integer"};
+    }
+    static float member_f(const Value& s, std::string_view name) {
+        const Value* m = s.member(name);
+        if (!m) throw Skip{"member " + std::string(name) + " is missing"};
+        return f32(*m, name);
+    }
+    static uint64_t pointer(const Call& c, std::string_view name) {
+        const Value& v = arg(c, name);
+        if (v.kind == Value::Kind::Null) return 0;
+        if (v.kind == Value::Kind::Pointer) return v.uint;
+        throw Skip{"argument " + std::string(name) + " is not a pointer"};
+    }
+
+    // --- objects ---
+    const Object& object(uint64_t ptr, std::string_view what) const {
+        auto it = objects_.find(ptr);
+        if (it == objects_.end()) throw Skip{std::string(what) + " 0x" + hex(ptr) + " is not an object the trace created"};
+        return it->second;
+    }
+    const Object& self(const Call& c) const { return object(pointer(c, "this"), "this"); }
+    // A binding argument: the object's handle, or NULL.
+    cs::Value binding(const Call& c, std::string_view name) const {
+        const uint64_t ptr = pointer(c, name);
+        if (ptr == 0) return ident("NULL");
+        return ident(object(ptr, name).name);
+    }
+    Object& add(uint64_t ptr, Object::Kind kind, std::string_view prefix) {
+        Object& o = objects_[ptr];
+        o = Object{};
+        o.kind = kind;
+        o.name = std::string(prefix) + "_" + hex(ptr);
+        return o;
+    }
+    static std::string_view format_name(int64_t value) {
+        const FormatInfo* info = format_info(static_cast<Format>(static_cast<uint32_t>(value)));
+        if (!info || value <= 0) throw Skip{"format " + std::to_string(value) + " is not one sm2emu has"};
+        return info->name;
+    }
+
+    // --- results ---
+    void emit(std::string name, std::vector<cs::Value> args) {
+        cs::Statement st;
+        st.kind = cs::Statement::Kind::Call;
+        st.name = std::move(name);
+        st.arguments = std::move(args);
+        result_.stream.statements.push_back(std::move(st));
+        emitted_ = true;
+    }
+    void skip(const Call& c, const std::string& reason) {
+        auto& report = result_.report;
+        ++report.skipped;
+        for (auto& k : report.skipped_kinds)
+            if (k.call == c.name()) {
+                ++k.count;
+                return;
+            }
+        report.skipped_kinds.push_back({c.name(), c.number, 1, reason});
+    }
+
+    void translate(const Call& c) {
+        emitted_ = false;
+        const size_t before = result_.stream.statements.size();
+        try {
+            // A call that failed at capture changed nothing.
+            if (c.ret && c.ret->kind == Value::Kind::Enum && static_cast<int32_t>(c.ret->sint) < 0) {
+                ++result_.report.accepted;
+                return;
+            }
+            const bool handled = dispatch(c);
+            if (!handled) throw Skip{"not in the stream vocabulary yet"};
+            if (emitted_) {
+                ++result_.report.imported;
+            } else {
+                ++result_.report.accepted;
+            }
+        } catch (const Skip& s) {
+            // Statements of a call that failed half way are withdrawn.
+            result_.stream.statements.resize(before);
+            skip(c, s.reason);
+        }
+    }
+
+    // Returns false for a call it does not know.
+    bool dispatch(const Call& c) {
+        const std::string& name = c.name();
+        const std::string_view method = method_of(name);
+        if (name == "Direct3DCreate9" || name == "Direct3DCreate9Ex") return true;
+        if (name == "memcpy") return upload(c);
+        if (name == "IDirect3D9::CreateDevice") return create_device(c);
+        if (name.rfind("IDirect3D9::", 0) == 0) return method != "CreateDeviceEx" && method != "RegisterSoftwareDevice";
+        if (method == "AddRef" || method == "QueryInterface") return true;
+        if (method == "Release") return release(c);
+        if (name.rfind("IDirect3DDevice9::", 0) == 0) return device(c, method);
+        if (method == "Lock" || method == "LockRect" || method == "LockBox") return lock(c, method);
+        if (method == "Unlock" || method == "UnlockRect" || method == "UnlockBox") {
+            const uint64_t ptr = pointer(c, "this");
+            std::erase_if(locks_, [&](const auto& entry) { return entry.second.object == ptr; });
+            return true;
+        }
+        if (method == "GetSurfaceLevel" || method == "GetCubeMapSurface") return surface_level(c, method);
+        if (method == "GenerateMipSubLevels") {
+            emit("GenerateMipSubLevels", {ident(self(c).name)});
+            return true;
+        }
+        if (method.rfind("Get", 0) == 0) return true;  // GetDesc, GetLevelCount, ...: queries
+        return false;
+    }
+
+    bool create_device(const Call& c) {
+        const Value& pp = deref(c, "pPresentationParameters");
+        const auto width = member(pp, "BackBufferWidth"), height = member(pp, "BackBufferHeight");
+        if (width <= 0 || height <= 0) throw Skip{"a back buffer of the window's size (0 in the parameters) is not known"};
+        int64_t fmt = member(pp, "BackBufferFormat");
+        if (fmt == 0) fmt = static_cast<int64_t>(Format::X8R8G8B8);  // D3DFMT_UNKNOWN in windowed mode: the desktop's
+        std::vector<cs::Value> args{integer(width), integer(height), ident(format_name(fmt))};
+        if (member(pp, "EnableAutoDepthStencil") != 0) args.push_back(ident(format_name(member(pp, "AutoDepthStencilFormat"))));
+        if (device_created_) throw Skip{"a second device"};
+        const uint64_t ptr = out_pointer(c, "ppReturnedDeviceInterface");
+        emit("CreateDevice", std::move(args));
+        device_created_ = true;
+        Object& dev = add(ptr, Object::Kind::Device, "device");
+        dev.owned = false;
+        return true;
+    }
+
+    // An object an output argument names, once the statement that creates it is out.
+    Object& created(const Call& c, std::string_view out, Object::Kind kind, std::string_view prefix) {
+        return add(out_pointer(c, out), kind, prefix);
+    }
+
+    bool device(const Call& c, std::string_view m) {
+        // Between BeginStateBlock and EndStateBlock, Set* calls are recorded into the block, not
+        // applied: importing them as states would apply them now.
+        if (m == "BeginStateBlock") {
+            recording_ = true;
+            return false;
+        }
+        if (m == "EndStateBlock") {
+            recording_ = false;
+            return false;
+        }
+        if (recording_ && (m.rfind("Set", 0) == 0 || m == "LightEnable" || m == "MultiplyTransform"))
+            throw Skip{"recorded into a state block (BeginStateBlock ... EndStateBlock), which the stream vocabulary lacks"};
+        if (m == "CreateVertexShader" || m == "CreatePixelShader") {
+            const bool vs = m == "CreateVertexShader";
+            const auto* tokens = arg(c, "pFunction").blob();
+            if (!tokens || tokens->empty() || tokens->size() % 4 != 0) throw Skip{"the shader's token blob is missing"};
+            const uint64_t ptr = out_pointer(c, "ppShader");
+            emit(vs ? "CreateVertexShader" : "CreatePixelShader", {ident((vs ? "vs_" : "ps_") + hex(ptr)), blob(*tokens, cs::BlobType::U32)});
+            add(ptr, Object::Kind::Shader, vs ? "vs" : "ps");
+            return true;
+        }
+        if (m == "CreateVertexDeclaration") {
+            const Value& elements = arg(c, "pVertexElements");
+            if (elements.kind != Value::Kind::Array) throw Skip{"pVertexElements is not an array"};
+            const uint64_t ptr = out_pointer(c, "ppDecl");
+            std::vector<cs::Value> args{ident("decl_" + hex(ptr))};
+            for (const Value& e : elements.items) {
+                if (member(e, "Stream") == 0xFF) break;  // D3DDECL_END
+                const auto type = enum_name(EnumFamily::DeclType, static_cast<uint32_t>(member(e, "Type")));
+                const auto method = enum_name(EnumFamily::DeclMethod, static_cast<uint32_t>(member(e, "Method")));
+                const auto usage = enum_name(EnumFamily::DeclUsage, static_cast<uint32_t>(member(e, "Usage")));
+                if (type.empty() || method.empty() || usage.empty()) throw Skip{"a vertex element sm2emu does not know"};
+                args.push_back(tuple({integer(member(e, "Stream")), integer(member(e, "Offset")), ident(type), ident(method),
+                                      ident(usage), integer(member(e, "UsageIndex"))}));
+            }
+            emit("CreateVertexDeclaration", std::move(args));
+            add(ptr, Object::Kind::Declaration, "decl");
+            return true;
+        }
+        if (m == "CreateVertexBuffer" || m == "CreateIndexBuffer") {
+            const bool vb = m == "CreateVertexBuffer";
+            const uint64_t ptr = out_pointer(c, vb ? "ppVertexBuffer" : "ppIndexBuffer");
+            std::vector<cs::Value> args{ident((vb ? "vb_" : "ib_") + hex(ptr)), integer(u32(c, "Length"))};
+            if (!vb) {
+                const int64_t f = num(c, "Format");
+                if (f != 101 && f != 102) throw Skip{"index format " + std::to_string(f)};
+                args.push_back(ident(f == 101 ? "INDEX16" : "INDEX32"));
+            }
+            emit(vb ? "CreateVertexBuffer" : "CreateIndexBuffer", std::move(args));
+            add(ptr, vb ? Object::Kind::VertexBuffer : Object::Kind::IndexBuffer, vb ? "vb" : "ib");
+            return true;
+        }
+        if (m == "CreateTexture" || m == "CreateCubeTexture" || m == "CreateVolumeTexture") {
+            const bool cube = m == "CreateCubeTexture", volume = m == "CreateVolumeTexture";
+            const uint64_t ptr = out_pointer(c, cube ? "ppCubeTexture" : volume ? "ppVolumeTexture" : "ppTexture");
+            const std::string prefix = cube ? "cube" : volume ? "vol" : "tex";
+            const int64_t format = num(c, "Format");
+            const uint32_t w = cube ? u32(c, "EdgeLength") : u32(c, "Width");
+            const uint32_t h = cube ? w : u32(c, "Height");
+            const uint32_t d = volume ? u32(c, "Depth") : 1;
+            std::vector<cs::Value> args{ident(prefix + "_" + hex(ptr)), integer(w)};
+            if (!cube) args.push_back(integer(h));
+            if (volume) args.push_back(integer(d));
+            args.push_back(integer(u32(c, "Levels")));
+            args.push_back(ident(format_name(format)));
+            if (!volume && (u32(c, "Usage") & kUsageRenderTarget)) args.push_back(ident("RENDERTARGET"));
+            emit(std::string(m), std::move(args));
+            Object& o = add(ptr, cube ? Object::Kind::CubeTexture : volume ? Object::Kind::VolumeTexture : Object::Kind::Texture, prefix);
+            o.format = static_cast<Format>(format);
+            o.width = w;
+            o.height = h;
+            o.depth = d;
+            return true;
+        }
+        if (m == "CreateRenderTarget" || m == "CreateDepthStencilSurface") {
+            const bool rt = m == "CreateRenderTarget";
+            const uint64_t ptr = out_pointer(c, "ppSurface");
+            const std::string prefix = rt ? "rt" : "ds";
+            emit(std::string(m), {ident(prefix + "_" + hex(ptr)), integer(u32(c, "Width")), integer(u32(c, "Height")),
+                     ident(format_name(num(c, "Format")))});
+            add(ptr, rt ? Object::Kind::RenderTarget : Object::Kind::DepthStencil, prefix);
+            return true;
+        }
+        if (m == "CreateOffscreenPlainSurface") {
+            // A system-memory surface is a read-back target (GetRenderTargetData): nothing to replay.
+            const int64_t pool = num(c, "Pool");
+            if (pool != 2 && pool != 3) throw Skip{"an offscreen surface outside SYSTEMMEM/SCRATCH"};
+            Object& o = created(c, "ppSurface", Object::Kind::ReadBack, "readback");
+            o.owned = false;
+            return true;
+        }
+        if (m == "GetBackBuffer" || m == "GetRenderTarget" || m == "GetDepthStencilSurface") {
+            const uint64_t ptr = out_pointer(c, m == "GetBackBuffer" ? "ppBackBuffer" : m == "GetRenderTarget" ? "ppRenderTarget" : "ppZStencilSurface");
+            if (!objects_.count(ptr)) {
+                // Before any SetRenderTarget/SetDepthStencilSurface, the device's own surfaces.
+                Object& o = objects_[ptr];
+                o.kind = Object::Kind::Surface;
+                o.name = m == "GetDepthStencilSurface" ? "autodepth" : "backbuffer";
+                o.owned = false;
+            }
+            return true;
+        }
+        if (m == "GetRenderTargetData" || m == "GetFrontBufferData") return true;  // read-backs
+        if (m.rfind("Get", 0) == 0 || m == "TestCooperativeLevel" || m == "ValidateDevice" || m == "SetCursorPosition" ||
+            m == "ShowCursor" || m == "EvictManagedResources")
+            return true;
+        if (m == "BeginScene" || m == "EndScene" || m == "Present") {
+            emit(std::string(m), {});
+            return true;
+        }
+        if (m == "Clear") {
+            if (u32(c, "Count") != 0) throw Skip{"Clear with a rectangle list"};
+            emit("Clear", {clear_flags(u32(c, "Flags")), integer(dword(c, "Color"), true), real(f32(arg(c, "Z"), "Z")),
+                           integer(u32(c, "Stencil"))});
+            return true;
+        }
+        if (m == "SetRenderState" || m == "SetSamplerState") {
+            const bool rs = m == "SetRenderState";
+            const uint32_t id = u32(c, rs ? "State" : "Type");
+            const StateInfo* state = rs ? find_render_state(id) : find_sampler_state(id);
+            if (!state) throw Skip{std::string(rs ? "render" : "sampler") + " state " + std::to_string(id) + " is not one sm2emu has"};
+            const uint32_t value = dword(c, "Value");
+            cs::Value v;
+            switch (state->kind) {
+            case StateValueKind::Enum: {
+                const auto n = enum_name(state->family, value);
+                if (n.empty()) throw Skip{std::string(state->name) + " value " + std::to_string(value) + " has no name in sm2emu"};
+                v = ident(n);
+                break;
+            }
+            case StateValueKind::Bool: v = ident(value ? "TRUE" : "FALSE"); break;
+            case StateValueKind::Float: v = real(std::bit_cast<float>(value)); break;
+            case StateValueKind::Color:
+            case StateValueKind::Bits: v = integer(value, true); break;
+            case StateValueKind::Integer: v = integer(value); break;
+            }
+            if (rs) {
+                emit("SetRenderState", {ident(state->name), std::move(v)});
+            } else {
+                emit("SetSamplerState", {integer(u32(c, "Sampler")), ident(state->name), std::move(v)});
+            }
+            return true;
+        }
+        if (m == "SetTexture") {
+            emit("SetTexture", {integer(u32(c, "Stage")), binding(c, "pTexture")});
+            return true;
+        }
+        if (m == "SetStreamSource") {
+            emit("SetStreamSource", {integer(u32(c, "StreamNumber")), binding(c, "pStreamData"), integer(u32(c, "OffsetInBytes")),
+                                     integer(u32(c, "Stride"))});
+            return true;
+        }
+        if (m == "SetIndices") {
+            emit("SetIndices", {binding(c, "pIndexData")});
+            return true;
+        }
+        if (m == "SetVertexDeclaration") {
+            emit("SetVertexDeclaration", {binding(c, "pDecl")});
+            return true;
+        }
+        if (m == "SetVertexShader" || m == "SetPixelShader") {
+            emit(std::string(m), {binding(c, "pShader")});
+            return true;
+        }
+        if (m.rfind("SetVertexShaderConstant", 0) == 0 || m.rfind("SetPixelShaderConstant", 0) == 0) return constants(c, m);
+        if (m == "SetViewport") {
+            const Value& vp = deref(c, "pViewport");
+            emit("SetViewport", {integer(member(vp, "X")), integer(member(vp, "Y")), integer(member(vp, "Width")),
+                                 integer(member(vp, "Height")), real(member_f(vp, "MinZ")), real(member_f(vp, "MaxZ"))});
+            return true;
+        }
+        if (m == "SetScissorRect") {
+            const Value& r = deref(c, "pRect");
+            emit("SetScissorRect", {integer(member(r, "left")), integer(member(r, "top")), integer(member(r, "right")),
+                                    integer(member(r, "bottom"))});
+            return true;
+        }
+        if (m == "SetClipPlane") {
+            const Value& plane = arg(c, "pPlane");
+            if (plane.kind != Value::Kind::Array || plane.items.size() != 4) throw Skip{"pPlane is not 4 floats"};
+            emit("SetClipPlane", {integer(u32(c, "Index")), real(f32(plane.items[0], "a")), real(f32(plane.items[1], "b")),
+                                  real(f32(plane.items[2], "c")), real(f32(plane.items[3], "d"))});
+            return true;
+        }
+        if (m == "SetRenderTarget" || m == "SetDepthStencilSurface") {
+            const bool rt = m == "SetRenderTarget";
+            const uint64_t ptr = pointer(c, rt ? "pRenderTarget" : "pNewZStencil");
+            cs::Value target = ident("NULL");
+            if (ptr != 0) {
+                const Object& o = object(ptr, rt ? "pRenderTarget" : "pNewZStencil");
+                if (o.kind == Object::Kind::Surface && (o.level != 0 || o.face >= 0))
+                    throw Skip{"a render target that is not level 0 of a 2D texture"};
+                target = ident(o.name);
+            }
+            if (rt) {
+                emit("SetRenderTarget", {integer(u32(c, "RenderTargetIndex")), std::move(target)});
+            } else {
+                emit("SetDepthStencilSurface", {std::move(target)});
+            }
+            return true;
+        }
+        if (m == "DrawPrimitive") {
+            emit("DrawPrimitive", {prim(c), integer(u32(c, "StartVertex")), integer(u32(c, "PrimitiveCount"))});
+            return true;
+        }
+        if (m == "DrawIndexedPrimitive") {
+            emit("DrawIndexedPrimitive", {prim(c), integer(num(c, "BaseVertexIndex")), integer(u32(c, "MinVertexIndex")),
+                                          integer(u32(c, "NumVertices")), integer(u32(c, "startIndex")),
+                                          integer(u32(c, "primCount"))});
+            return true;
+        }
+        if (m == "DrawPrimitiveUP") {
+            const Value& data = arg(c, "pVertexStreamZeroData");
+            if (!data.blob()) throw Skip{"the vertex data was not recorded"};
+            emit("DrawPrimitiveUP", {prim(c), integer(u32(c, "PrimitiveCount")), integer(u32(c, "VertexStreamZeroStride")),
+                                     blob(*data.blob(), cs::BlobType::Hex)});
+            return true;
+        }
+        if (m == "DrawIndexedPrimitiveUP") {
+            const Value& indices = arg(c, "pIndexData");
+            const Value& data = arg(c, "pVertexStreamZeroData");
+            if (!data.blob() || !indices.blob()) throw Skip{"the vertex or index data was not recorded"};
+            const int64_t f = num(c, "IndexDataFormat");
+            if (f != 101 && f != 102) throw Skip{"index format " + std::to_string(f)};
+            emit("DrawIndexedPrimitiveUP", {prim(c), integer(u32(c, "MinVertexIndex")), integer(u32(c, "NumVertices")),
+                                            integer(u32(c, "PrimitiveCount")), blob(*indices.blob(), cs::BlobType::Hex),
+                                            ident(f == 101 ? "INDEX16" : "INDEX32"), blob(*data.blob(), cs::BlobType::Hex),
+                                            integer(u32(c, "VertexStreamZeroStride"))});
+            return true;
+        }
+        if (m == "StretchRect") {
+            if (arg(c, "pSourceRect").kind != Value::Kind::Null || arg(c, "pDestRect").kind != Value::Kind::Null)
+                throw Skip{"StretchRect of a rectangle"};
+            const auto filter = enum_name(EnumFamily::TextureFilter, u32(c, "Filter"));
+            if (filter.empty()) throw Skip{"an unknown filter"};
+            emit("StretchRect", {binding(c, "pSourceSurface"), binding(c, "pDestSurface"), ident(filter)});
+            return true;
+        }
+        return false;
+    }
+
+    // TARGET, { TARGET STENCIL }, or the number when a bit has no name.
+    static cs::Value clear_flags(uint32_t flags) {
+        std::vector<cs::Value> names;
+        for (uint32_t bit = 1; bit != 0 && bit <= flags; bit <<= 1) {
+            if (!(flags & bit)) continue;
+            const auto n = enum_name(EnumFamily::ClearFlags, bit);
+            if (n.empty()) return integer(flags);
+            names.push_back(ident(n));
+        }
+        if (names.size() == 1) return names[0];
+        if (names.empty()) return integer(flags);
+        return tuple(std::move(names));
+    }
+
+    cs::Value prim(const Call& c) const {
+        const auto n = enum_name(EnumFamily::PrimitiveType, u32(c, "PrimitiveType"));
+        if (n.empty()) throw Skip{"an unknown primitive type"};
+        return ident(n);
+    }
+
+    bool constants(const Call& c, std::string_view m) {
+        const char kind = m.back();  // F, I or B
+        if (kind != 'F' && kind != 'I' && kind != 'B') return false;
+        const Value& data = arg(c, "pConstantData");
+        if (data.kind != Value::Kind::Array) throw Skip{"pConstantData is not an array"};
+        std::vector<std::byte> bytes(data.items.size() * 4);
+        for (size_t i = 0; i < data.items.size(); ++i) {
+            uint32_t word = 0;
+            if (kind == 'F') {
+                word = std::bit_cast<uint32_t>(f32(data.items[i], "a constant"));
+            } else {
+                auto v = data.items[i].as_int();
+                if (!v) throw Skip{"a constant is not an integer"};
+                word = static_cast<uint32_t>(*v);
+            }
+            std::memcpy(bytes.data() + 4 * i, &word, 4);
+        }
+        const cs::BlobType type = kind == 'F' ? cs::BlobType::F32 : kind == 'I' ? cs::BlobType::I32 : cs::BlobType::U32;
+        emit(std::string(m), {integer(u32(c, "StartRegister")), blob(std::move(bytes), type)});
+        return true;
+    }
+
+    bool release(const Call& c) {
+        const uint64_t ptr = pointer(c, "this");
+        auto it = objects_.find(ptr);
+        if (it == objects_.end()) return true;  // the IDirect3D9 object, or one whose creation was skipped
+        const auto left = c.ret ? c.ret->as_int() : std::nullopt;
+        if (left && *left == 0) {
+            if (it->second.owned) emit("Release", {ident(it->second.name)});
+            objects_.erase(it);
+        }
+        return true;
+    }
+
+    bool surface_level(const Call& c, std::string_view m) {
+        const Object& tex = self(c);
+        const uint64_t ptr = out_pointer(c, m == "GetSurfaceLevel" ? "ppSurfaceLevel" : "ppCubeMapSurface");
+        Object s = tex;
+        s.kind = Object::Kind::Surface;
+        s.owned = false;
+        s.level = u32(c, "Level");
+        s.face = m == "GetCubeMapSurface" ? static_cast<int32_t>(u32(c, "FaceType")) : -1;
+        objects_[ptr] = s;
+        return true;
+    }
+
+    bool lock(const Call& c, std::string_view m) {
+        const Object& o = self(c);
+        const uint32_t flags = u32(c, "Flags");
+        if (flags & kLockReadOnly) return true;  // a read-back: no bytes come
+        Lock l;
+        l.object = pointer(c, "this");
+        uint64_t bits = 0;
+        if (m == "Lock") {
+            l.offset = u32(c, "OffsetToLock");
+            bits = out_pointer(c, "ppbData");
+        } else if (m == "LockRect") {
+            const Value& locked = deref(c, "pLockedRect");
+            l.pitch = static_cast<uint64_t>(member(locked, "Pitch"));
+            bits = static_cast<uint64_t>(member(locked, "pBits"));
+            l.whole = pointer(c, "pRect") == 0;
+            if (o.kind == Object::Kind::Surface) {
+                l.level = o.level;
+                l.face = o.face;
+            } else {
+                l.level = u32(c, "Level");
+                if (o.kind == Object::Kind::CubeTexture) l.face = static_cast<int32_t>(u32(c, "FaceType"));
+            }
+        } else {
+            const Value& locked = deref(c, "pLockedVolume");
+            l.pitch = static_cast<uint64_t>(member(locked, "RowPitch"));
+            l.slice_pitch = static_cast<uint64_t>(member(locked, "SlicePitch"));
+            bits = static_cast<uint64_t>(member(locked, "pBits"));
+            l.whole = pointer(c, "pBox") == 0;
+            l.level = u32(c, "Level");
+        }
+        locks_[bits] = l;
+        return true;
+    }
+
+    bool upload(const Call& c) {
+        const uint64_t dest = pointer(c, "dest");
+        const Value& src = arg(c, "src");
+        if (!src.blob()) throw Skip{"the copied bytes were not recorded"};
+        const std::vector<std::byte>& bytes = *src.blob();
+        // The lock whose memory holds `dest` (the highest start at or below it).
+        const Lock* l = nullptr;
+        uint64_t start = 0;
+        for (const auto& [at, lk] : locks_)
+            if (at <= dest && (!l || at > start)) {
+                l = &lk;
+                start = at;
+            }
+        if (!l) throw Skip{"a copy to 0x" + hex(dest) + ", which no Lock returned"};
+        const Object& o = object(l->object, "the locked object");
+        if (o.kind == Object::Kind::VertexBuffer || o.kind == Object::Kind::IndexBuffer) {
+            if (dest - start > 0xFFFFFFFFull) throw Skip{"a copy far past its lock"};
+            emit("Lock", {ident(o.name), integer(static_cast<int64_t>(l->offset + (dest - start))), blob(bytes, cs::BlobType::Hex)});
+            return true;
+        }
+        if (dest != start || !l->whole) throw Skip{"an upload to part of a texture level"};
+        const bool texture = o.kind == Object::Kind::Texture || o.kind == Object::Kind::CubeTexture ||
+                             o.kind == Object::Kind::VolumeTexture ||
+                             (o.kind == Object::Kind::Surface && o.format != Format::Unknown);
+        if (!texture) throw Skip{"an upload to a surface that is not a texture level"};
+        const FormatInfo* info = format_info(o.format);
+        if (!info) throw Skip{"an upload in a format sm2emu does not have"};
+        if (l->level >= 32) throw Skip{"level " + std::to_string(l->level) + " does not exist"};
+        const bool compressed = info->kind == FormatKind::Compressed;
+        const uint64_t w = std::max<uint64_t>(1, o.width >> l->level), h = std::max<uint64_t>(1, o.height >> l->level);
+        const uint64_t d = std::max<uint64_t>(1, o.depth >> l->level);
+        const uint64_t row = compressed ? (w + 3) / 4 * info->bytes : w * info->bytes;
+        const uint64_t rows = compressed ? (h + 3) / 4 : h;
+        const bool volume = o.kind == Object::Kind::VolumeTexture;
+        const uint64_t slice_pitch = volume ? l->slice_pitch : rows * l->pitch;
+        // Pitches come from the trace: bounded by the copy before any arithmetic on them.
+        if (l->pitch > bytes.size() || slice_pitch > bytes.size() || o.width == 0 || o.height == 0)
+            throw Skip{"a pitch larger than the copy"};
+        if (l->pitch < row || (volume && d > 1 && slice_pitch < (rows - 1) * l->pitch + row))
+            throw Skip{"a pitch smaller than a row"};
+        const uint64_t need = (volume ? (d - 1) * slice_pitch : 0) + (rows - 1) * l->pitch + row;
+        if (bytes.size() < need) throw Skip{"the copy holds " + std::to_string(bytes.size()) + " bytes, the level needs " + std::to_string(need)};
+        std::vector<std::byte> tight;
+        tight.reserve(static_cast<size_t>(row * rows * (volume ? d : 1)));
+        for (uint64_t z = 0; z < (volume ? d : 1); ++z)
+            for (uint64_t y = 0; y < rows; ++y) {
+                const auto* p = bytes.data() + z * slice_pitch + y * l->pitch;
+                tight.insert(tight.end(), p, p + row);
+            }
+        std::vector<cs::Value> args{ident(o.name)};
+        if (volume) {
+            args.push_back(integer(l->level));
+            args.push_back(blob(std::move(tight), cs::BlobType::Hex));
+            emit("LockBox", std::move(args));
+            return true;
+        }
+        if (l->face >= 0) {
+            const auto face = enum_name(EnumFamily::CubeFace, static_cast<uint32_t>(l->face));
+            if (face.empty()) throw Skip{"an unknown cube face"};
+            args.push_back(ident(face));
+        }
+        args.push_back(integer(l->level));
+        args.push_back(blob(std::move(tight), cs::BlobType::Hex));
+        emit("LockRect", std::move(args));
+        return true;
+    }
+
+    ImportResult result_;
+    std::unordered_map<uint64_t, Object> objects_;
+    std::unordered_map<uint64_t, Lock> locks_;  // by the address the lock returned
+    bool device_created_ = false;
+    bool recording_ = false;  // between BeginStateBlock and EndStateBlock
+    bool emitted_ = false;
+};
+
+}  // namespace
+
+ImportResult import_d3d9(Reader& reader) { return Importer().run(reader); }
+
+std::string ImportReport::to_string() const {
+    std::string s = "imported " + std::to_string(imported) + ", accepted " + std::to_string(accepted) + ", skipped " +
+                    std::to_string(skipped) + " of " + std::to_string(calls) + " calls\n";
+    for (const auto& k : skipped_kinds)
+        s += "  " + k.call + ": " + std::to_string(k.count) + (k.count == 1 ? " call" : " calls") + " skipped from call " +
+             std::to_string(k.first) + ": " + k.reason + "\n";
+    return s;
+}
+
+}  // namespace sm2::runtime::apitrace
