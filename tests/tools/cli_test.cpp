@@ -11,44 +11,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "cli_support.h"
+
 namespace {
 
-struct Run {
-    int status = -1;
-    std::string out;
-    std::string err;
-};
-
-std::string slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-// ctest runs each test in its own process, in parallel: the pid keeps their files apart.
-std::string tmp(const std::string& name) {
-    return std::string(SM2_TEST_TMP) + "/" + std::to_string(getpid()) + "_" + name;
-}
-
-void write_file(const std::string& path, const std::string& text) {
-    std::ofstream(path, std::ios::binary) << text;
-}
-
-// Runs `sm2 ARGS` with optional stdin text; captures stdout, stderr and the exit status.
-Run sm2(const std::string& args, const std::string& stdin_text = "") {
-    static int counter = 0;
-    const std::string base = tmp("run" + std::to_string(counter++));
-    write_file(base + ".in", stdin_text);
-    const std::string cmd = std::string(SM2_TOOL) + " " + args + " <" + base + ".in >" + base +
-                            ".out 2>" + base + ".err";
-    const int raw = std::system(cmd.c_str());
-    Run r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = slurp(base + ".out");
-    r.err = slurp(base + ".err");
-    return r;
-}
+// Running sm2 (Run, sm2, tmp, slurp, write_file): tests/tools/cli_support.h.
+using namespace cli_support;
 
 const std::string kExampleA = std::string(SM2_SOURCE_DIR) + "/tests/assembler/corpus/example_a_ps.asm";
 
