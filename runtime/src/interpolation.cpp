@@ -5,13 +5,10 @@
 
 #include <immintrin.h>
 
+#include "unorm8_avx512.h"
+
 namespace sm2::runtime {
 namespace {
-
-bool cpu_has_avx512() {
-    static const bool has = __builtin_cpu_supports("avx512f");
-    return has;
-}
 
 // GCC 12's AVX-512 headers trip -Wuninitialized on their own _mm512_undefined_*() self-init.
 #if defined(__GNUC__) && !defined(__clang__)
@@ -23,7 +20,7 @@ bool cpu_has_avx512() {
 // Each lane's pixel (lanes past quad n - 1 repeat its position), written with one 64-byte store
 // per coordinate: the loops below load them as vectors, and a vector load of what 16 scalar
 // stores just wrote stalls (no store forwarding) for about as long as the rest of the set-up.
-__attribute__((target("avx512f"))) void lane_positions_avx512(const Quad* quads, size_t n, PixelLanes& lanes) {
+SM2_AVX512 void lane_positions_avx512(const Quad* quads, size_t n, PixelLanes& lanes) {
     static_assert(sizeof(Quad) == 12 && offsetof(Quad, x) == 0 && offsetof(Quad, y) == 4, "3 words per quad");
     const __m512i quad_of_lane = _mm512_min_epi32(_mm512_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3),
                                                   _mm512_set1_epi32(static_cast<int32_t>(n) - 1));

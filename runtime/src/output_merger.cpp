@@ -264,12 +264,6 @@ void blend_batch(const BlendState& b, const Rgba<Lanes>& src, const Rgba<Lanes>&
     for (Lanes& c : out) saturate(c);
 }
 
-bool cpu_has_avx512() {
-    static const bool has = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-                            __builtin_cpu_supports("avx512vl");
-    return has;
-}
-
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wuninitialized"

@@ -592,9 +592,7 @@ bool block_address_supported(TextureAddress mode, bool all_pow2) {
 bool block_supported(const Context& c, BlockLevels& levels) {
     if (c.cube || c.volume || c.dxt || c.srgb || c.anisotropic || !block_format(c.format)) return false;
     if (c.texture->levels() > BlockLevels::kMax || c.bpp != 4) return false;
-    static const bool cpu_has_avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-                                      __builtin_cpu_supports("avx512vl");
-    if (!cpu_has_avx512) return false;
+    if (!cpu_has_avx512()) return false;
     bool all_pow2 = true;
     const unsigned count = c.texture->levels();
     for (unsigned l = 0; l < count; ++l) {

@@ -6,8 +6,20 @@
 
 #include <immintrin.h>
 
-// Callers check avx512f, avx512dq and avx512vl.
+// Functions marked SM2_AVX512 run only where cpu_has_avx512() holds.
 #define SM2_AVX512 __attribute__((target("avx512f,avx512dq,avx512vl")))
+
+namespace sm2::runtime {
+
+// Whether this CPU runs SM2_AVX512 code (the block paths of the sampler, the output merger and
+// interpolation); asked once.
+inline bool cpu_has_avx512() {
+    static const bool has = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+                            __builtin_cpu_supports("avx512vl");
+    return has;
+}
+
+}  // namespace sm2::runtime
 
 namespace sm2::runtime::unorm8 {
 

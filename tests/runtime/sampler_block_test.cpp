@@ -14,6 +14,7 @@
 
 #include "sm2/runtime/sampler.h"
 #include "sm2/runtime/texture.h"
+#include "unorm8_avx512.h"  // cpu_has_avx512
 
 namespace sm2::runtime {
 namespace {
@@ -139,7 +140,7 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
     }
     // Without AVX-512 the comparison is trivially equal; with it, a good share must have taken
     // the block path for the test to mean anything.
-    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq")) {
+    if (cpu_has_avx512()) {
         EXPECT_GT(block_requests, total / 5);
     }
 }
@@ -173,48 +174,9 @@ TEST(SamplerBlockPath, BilinearCentreOfA2x2Texture) {
     }
 }
 
-// The block path decodes UNORM8 without a division (a reciprocal product corrected by its
-// residual): every one of the 256 bytes must read exactly byte / 255 as IEEE division gives it.
-// A 256x1 A8R8G8B8 texture whose texel x holds byte x in all four channels, POINT, at the
-// centres of 16 texels per request.
-TEST(SamplerBlockPath, EveryUnorm8ByteDecodesAsTheDivision) {
-    Texture t = Texture::create_2d(Format::A8R8G8B8, 256, 1, 1);
-    auto& bytes = t.surface(0).bytes();
-    for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<std::byte>(i / 4);
-    TextureSampler s;
-    s.set_texture(0, &t);
-    SamplerState st;
-    st.address_u = st.address_v = TextureAddress::Clamp;
-    st.mag_filter = st.min_filter = TextureFilter::Point;
-    st.mip_filter = TextureFilter::None;
-    s.set_state(0, st);
-    s.prepare();
-    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq")) {
-        ASSERT_TRUE(s.block_path_applies(0));
-    }
-    for (unsigned first = 0; first < 256; first += emu::kBatchLanes) {
-        std::array<emu::FloatLanes, 4> coords{};
-        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-            coords[0][l] = (static_cast<float>(first + l) + 0.5f) / 256.0f;  // exact in binary
-            coords[1][l] = 0.5f;
-        }
-        emu::TextureRequest r;
-        r.coordinates = &coords;
-        std::array<emu::FloatLanes, 4> texels;
-        s.sample(r, texels);
-        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-            volatile float byte = static_cast<float>(first + l);
-            const float expected = byte / 255.0f;
-            for (unsigned c = 0; c < 4; ++c)
-                ASSERT_EQ(std::bit_cast<uint32_t>(texels[c][l]), std::bit_cast<uint32_t>(expected))
-                    << "byte " << first + l << " channel " << c;
-        }
-    }
-}
-
-// The same for every UNORM field width the block path reads (v / (2^n - 1) without a
-// division): every value of the 10-bit colour and 2-bit alpha fields of A2B10G10R10 and of the
-// 16-bit fields of G16R16, POINT-sampled at texel centres of a texture holding each value once.
+// The block path decodes UNORM fields without a division (a reciprocal product corrected by its
+// residual): every value of a field must read exactly v / (2^n - 1) as IEEE division gives it.
+// A texture holding each value of the field once, POINT-sampled at its texel centres.
 void expect_every_field_value(Format format, unsigned bits, unsigned shift, unsigned channel) {
     const uint32_t count = 1u << bits, width = std::min(count, 4096u), height = count / width;
     Texture t = Texture::create_2d(format, width, height, 1);
@@ -232,7 +194,7 @@ void expect_every_field_value(Format format, unsigned bits, unsigned shift, unsi
     st.mip_filter = TextureFilter::None;
     s.set_state(0, st);
     s.prepare();
-    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq")) {
+    if (cpu_has_avx512()) {
         ASSERT_TRUE(s.block_path_applies(0)) << bits << " bits";
     }
     const float max = static_cast<float>(count - 1);
@@ -255,6 +217,13 @@ void expect_every_field_value(Format format, unsigned bits, unsigned shift, unsi
                 << bits << "-bit value " << v;
         }
     }
+}
+
+TEST(SamplerBlockPath, EveryUnorm8ByteDecodesAsTheDivision) {
+    expect_every_field_value(Format::A8R8G8B8, 8, 16, 0);  // red
+    expect_every_field_value(Format::A8R8G8B8, 8, 8, 1);   // green
+    expect_every_field_value(Format::A8R8G8B8, 8, 0, 2);   // blue
+    expect_every_field_value(Format::A8R8G8B8, 8, 24, 3);  // alpha
 }
 
 TEST(SamplerBlockPath, EveryTenAndTwoBitFieldDecodesAsTheDivision) {
