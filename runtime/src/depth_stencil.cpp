@@ -24,15 +24,15 @@ uint32_t quantize_depth(const DepthFormatInfo& info, float z) {
     if (!(z > 0.0f)) z = 0.0f;  // also NaN
     if (z > 1.0f) z = 1.0f;
     if (info.float_depth) return std::bit_cast<uint32_t>(z);
-    // round(z * (2^n - 1)) exactly: z = m * 2^e with a 24-bit integer m, so the product is the
-    // integer m * (2^n - 1) (at most 56 bits) scaled by 2^e; round half up.
-    if (z == 0.0f) return 0;
-    int e = 0;
-    const float frac = std::frexp(z, &e);                   // z = frac * 2^e, frac in [0.5, 1)
-    const auto m = static_cast<uint64_t>(std::ldexp(frac, 24));  // exact 24-bit integer
-    const int shift = 24 - e;                               // z = m * 2^-shift, shift >= 24
+    // round(z * (2^n - 1)) exactly: z = m * 2^-shift with an integer m of at most 24 bits (read
+    // from the float's fields, no frexp), so the product is the integer m * (2^n - 1) (at most 56
+    // bits) scaled by 2^-shift; round half up.
+    const uint32_t bits = std::bit_cast<uint32_t>(z);
+    const uint32_t biased = bits >> 23;                        // z in [0, 1]: the sign is 0
+    const uint64_t m = (bits & 0x7FFFFFu) | (biased != 0 ? 0x800000u : 0u);
+    const int shift = biased != 0 ? 150 - static_cast<int>(biased) : 149;  // >= 23; denormals: 2^-149 units
     const uint64_t product = m * ((uint64_t{1} << info.depth_bits) - 1);
-    if (shift >= 64) return 0;
+    if (m == 0 || shift >= 64) return 0;
     return static_cast<uint32_t>((product + (uint64_t{1} << (shift - 1))) >> shift);
 }
 

@@ -161,6 +161,17 @@ Context make_context(const Texture& texture, const SamplerState& s, FilterPrecis
     return c;
 }
 
+// How the block path reads a channel (r, g, b, a) of a 32-bit texel, from the format's layout
+// (format_layout.h): a UNORM field of up to 16 bits (decoded as the layout's v / (2^n - 1)), a
+// 32-bit float, or a constant 0 or 1 for a channel the format lacks.
+struct BlockChannel {
+    enum class Kind : uint8_t { Zero, One, Unorm, Float } kind = Kind::Zero;
+    unsigned shift = 0;
+    uint32_t mask = 0;   // 2^n - 1 for Unorm
+    float max = 1.0f;    // float(2^n - 1)
+};
+using BlockFormat = std::array<BlockChannel, 4>;
+
 }  // namespace
 
 // The levels of a texture as tables the block path's lanes index by level number, and the
@@ -176,6 +187,7 @@ struct TextureSampler::BlockLevels {
     const std::byte* anchor = nullptr;
     bool offsets32 = false;
     Context context;
+    BlockFormat format;  // how texels decode (looked up once per prepare(), not per lookup)
 };
 
 namespace {
@@ -543,17 +555,6 @@ struct BlockLanes {
 
 using BlockLevels = TextureSampler::BlockLevels;
 
-// How the block path reads a channel (r, g, b, a) of a 32-bit texel, from the format's layout
-// (format_layout.h): a UNORM field of up to 16 bits (decoded as the layout's v / (2^n - 1)), a
-// 32-bit float, or a constant 0 or 1 for a channel the format lacks.
-struct BlockChannel {
-    enum class Kind : uint8_t { Zero, One, Unorm, Float } kind = Kind::Zero;
-    unsigned shift = 0;
-    uint32_t mask = 0;   // 2^n - 1 for Unorm
-    float max = 1.0f;    // float(2^n - 1)
-};
-using BlockFormat = std::array<BlockChannel, 4>;
-
 // The formats of 4-byte texels whose channels are all of those kinds (A8R8G8B8, X8R8G8B8,
 // A8B8G8R8, X8B8G8R8, A2B10G10R10, A2R10G10B10, G16R16, R32F, ...).
 std::optional<BlockFormat> block_format(Format f) {
@@ -590,7 +591,10 @@ bool block_address_supported(TextureAddress mode, bool all_pow2) {
 
 // Whether the 16-lane path covers this context; fills the level tables.
 bool block_supported(const Context& c, BlockLevels& levels) {
-    if (c.cube || c.volume || c.dxt || c.srgb || c.anisotropic || !block_format(c.format)) return false;
+    if (c.cube || c.volume || c.dxt || c.srgb || c.anisotropic) return false;
+    const std::optional<BlockFormat> format = block_format(c.format);
+    if (!format) return false;
+    levels.format = *format;
     if (c.texture->levels() > BlockLevels::kMax || c.bpp != 4) return false;
     if (!cpu_has_avx512()) return false;
     bool all_pow2 = true;
@@ -766,7 +770,7 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
 // The lookups of `in` (every lane valid: lanes without a pixel read level c.first at 0, 0).
 SM2_AVX512 void block_lookup(const Context& c, const BlockLevels& levels, const BlockLanes& in, __mmask16 used,
                              std::array<emu::FloatLanes, 4>& texels) {
-    const BlockFormat format = *block_format(c.format);
+    const BlockFormat& format = levels.format;
     const __mmask16 linear = _mm512_cmpneq_epi32_mask(_mm512_load_si512(in.linear.data()), _mm512_setzero_si512());
     __m512 r[4];
     block_filter_level(c, levels, format, _mm512_load_si512(in.l0.data()), in, linear, r);

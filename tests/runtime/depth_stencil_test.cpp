@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <cmath>
 #include <limits>
 
 #include "sm2/runtime/depth_stencil.h"
@@ -42,6 +43,27 @@ TEST(DepthStencil, QuantizationPerFormat) {
     EXPECT_EQ(quantize_depth(f32, 0.1f), std::bit_cast<uint32_t>(0.1f));
     EXPECT_EQ(dequantize_depth(f32, std::bit_cast<uint32_t>(0.1f)), 0.1f);
     EXPECT_EQ(dequantize_depth(d16, 65535u), 1.0f);
+}
+
+// Every 97th float of [0, 1] (normals and denormals) against round(z * (2^n - 1)) worked out in
+// double, where the product is exact for 16 and 24 bits (24 + 24 significant bits) and the
+// fraction test does the rounding without adding 0.5 in floating point.
+TEST(DepthStencil, QuantizationMatchesExactRoundingOverFloats) {
+    const DepthFormatInfo d16{16, 0, false}, d24{24, 8, false};
+    const uint32_t one = std::bit_cast<uint32_t>(1.0f);
+    for (const DepthFormatInfo& info : {d16, d24}) {
+        const double max = static_cast<double>((uint64_t{1} << info.depth_bits) - 1);
+        unsigned checked = 0;
+        for (uint32_t bits = 0; bits <= one; bits += bits < 4096 ? 1 : 97) {
+            const float z = std::bit_cast<float>(bits);
+            const double p = static_cast<double>(z) * max;
+            const double whole = std::floor(p);
+            const auto expected = static_cast<uint32_t>(whole) + (p - whole >= 0.5 ? 1u : 0u);
+            ASSERT_EQ(quantize_depth(info, z), expected) << "z = " << z << " (bits " << bits << ")";
+            ++checked;
+        }
+        EXPECT_GT(checked, 10000000u);
+    }
 }
 
 TEST(DepthStencil, FormatsAndCreation) {
