@@ -124,6 +124,11 @@ struct Context {
     int first = 0, last = 0;
     float bias = 0;
     const std::array<float, 256>* srgb_table = nullptr;
+    // Fixed8 bilinear on UNORM fields of at most 8 bits sums exactly (see exact_bilinear): the
+    // channels (bit k: r, g, b, a) that do, and where their fields lie in the texel.
+    uint8_t exact_channels = 0;
+    std::array<uint8_t, 4> exact_shift{};
+    std::array<uint32_t, 4> exact_mask{};
 };
 
 Context make_context(const Texture& texture, const SamplerState& s, FilterPrecision precision) {
@@ -139,6 +144,16 @@ Context make_context(const Texture& texture, const SamplerState& s, FilterPrecis
     c.cube = texture.type() == TextureType::Cube;
     c.volume = texture.type() == TextureType::Volume;
     c.fixed = precision == FilterPrecision::Fixed8;
+    if (c.fixed && !c.dxt && !c.srgb && c.bpp >= 1 && c.bpp <= 4) {
+        const layout::Layout lay = layout::layout_of(c.format);
+        for (unsigned k = 0; k < 4 && lay.valid; ++k) {
+            const layout::Channel& ch = lay.rgba[k];
+            if (ch.type != layout::Type::Unorm || ch.bits == 0 || ch.bits > 8 || ch.shift + ch.bits > 8 * c.bpp) continue;
+            c.exact_channels = static_cast<uint8_t>(c.exact_channels | 1u << k);
+            c.exact_shift[k] = static_cast<uint8_t>(ch.shift);
+            c.exact_mask[k] = (1u << ch.bits) - 1u;
+        }
+    }
     if (c.cube) {
         // No filtering across cube face edges: every face clamps.
         c.address[0] = c.address[1] = c.address[2] = TextureAddress::Clamp;
@@ -292,6 +307,36 @@ void accumulate(Float4& sum, const Float4& t, float w) {
     for (unsigned k = 0; k < 4; ++k) sum[k] += w * t[k];
 }
 
+// The texel's bytes as a little-endian word (formats of at most 4 bytes).
+uint32_t texel_word(const Context& c, const Level& l, int64_t x, int64_t y) {
+    const std::byte* p = l.data + static_cast<size_t>(y) * l.row + static_cast<size_t>(x) * c.bpp;
+    uint32_t word = 0;
+    for (unsigned i = 0; i < c.bpp; ++i) word |= std::to_integer<uint32_t>(p[i]) << (8 * i);
+    return word;
+}
+
+// Fixed8 LINEAR on a channel stored as a UNORM field of n <= 8 bits (max = 2^n - 1): with the
+// taps' integer values v and the weights in 1/256 units (a = A / 256), the bilinear sum
+//   S = (v00 (256 - Ax) + v10 Ax)(256 - Ay) + (v01 (256 - Ax) + v11 Ax) Ay
+// is an integer below 2^24, and S / (max * 65536) is the exact filtered value; both are floats
+// exactly, so one division rounds it correctly. The block path computes the same S and
+// quotient (block_filter_level). Only lookups whose four taps lie in the level (no BORDER tap).
+void exact_bilinear(const Context& c, const Level& l, const Taps& tx, const Taps& ty, Float4& r) {
+    if (tx.i0 < 0 || tx.i1 < 0 || ty.i0 < 0 || ty.i1 < 0) return;
+    const auto ax = static_cast<uint32_t>(tx.a * kFixedScale), ay = static_cast<uint32_t>(ty.a * kFixedScale);
+    const uint32_t t00 = texel_word(c, l, tx.i0, ty.i0), t10 = texel_word(c, l, tx.i1, ty.i0);
+    const uint32_t t01 = texel_word(c, l, tx.i0, ty.i1), t11 = texel_word(c, l, tx.i1, ty.i1);
+    for (unsigned k = 0; k < 4; ++k) {
+        if (!(c.exact_channels >> k & 1u)) continue;
+        const unsigned shift = c.exact_shift[k];
+        const uint32_t mask = c.exact_mask[k];
+        auto v = [&](uint32_t t) { return t >> shift & mask; };
+        const uint32_t top = v(t00) * (256 - ax) + v(t10) * ax, bottom = v(t01) * (256 - ax) + v(t11) * ax;
+        const uint32_t sum = top * (256 - ay) + bottom * ay;
+        r[k] = static_cast<float>(sum) / static_cast<float>(mask * 65536u);
+    }
+}
+
 // One probe on one level.
 template <Format F>
 Float4 filter_level(const Context& c, const Level& l, Filter f, float u, float v, float w) {
@@ -314,7 +359,11 @@ Float4 filter_level(const Context& c, const Level& l, Filter f, float u, float v
         for (unsigned k = 0; k < 4; ++k) r[k] = t00[k] * w00 + t10[k] * w10 + t01[k] * w01 + t11[k] * w11;
         return r;
     };
-    if (!c.volume) return plane(0, 1.0f);
+    if (!c.volume) {
+        Float4 r = plane(0, 1.0f);
+        if (c.exact_channels != 0) exact_bilinear(c, l, tx, ty, r);
+        return r;
+    }
     const Taps tz = linear_taps(c, texel_space(w, l.d), l.d, c.address[2]);
     Float4 r = plane(tz.i0, 1 - tz.a);
     const Float4 r1 = plane(tz.i1, tz.a);
@@ -701,6 +750,11 @@ SM2_AVX512 inline __m512i block_gather(__m512i x, __m512i y, __m512i row, __m512
     return _mm512_inserti64x4(_mm512_castsi256_si512(texels_lo), texels_hi, 1);
 }
 
+// The integer value of UNORM channel `ch` of 16 texels, as floats.
+SM2_AVX512 inline __m512 block_field(__m512i texels, const BlockChannel& ch) {
+    return _mm512_cvtepi32_ps(_mm512_and_si512(_mm512_srli_epi32(texels, ch.shift), _mm512_set1_epi32(static_cast<int32_t>(ch.mask))));
+}
+
 // Channel `ch` of 16 texels, as format_layout.h decodes it.
 SM2_AVX512 inline __m512 block_channel(__m512i texels, const BlockChannel& ch) {
     switch (ch.kind) {
@@ -755,8 +809,21 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
     const __m512 bx = _mm512_sub_ps(one, tx.a), by = _mm512_sub_ps(one, ty.a);
     const __m512 w00 = _mm512_mul_ps(bx, by), w10 = _mm512_mul_ps(tx.a, by);
     const __m512 w01 = _mm512_mul_ps(bx, ty.a), w11 = _mm512_mul_ps(tx.a, ty.a);
+    // exact_bilinear()'s integer sums for fixed8 weights on UNORM fields of at most 8 bits:
+    // every product and sum is an integer below 2^24, exact in float (POINT lanes have Ax =
+    // Ay = 0: S = 65536 v00, whose quotient is v00's decode).
+    const __m512 full = _mm512_set1_ps(kFixedScale);
+    const __m512 ax = _mm512_mul_ps(tx.a, full), ay = _mm512_mul_ps(ty.a, full);
+    const __m512 bxi = _mm512_sub_ps(full, ax), byi = _mm512_sub_ps(full, ay);
     for (unsigned k = 0; k < 4; ++k) {
         const BlockChannel& ch = format[k];
+        if (c.fixed && ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 0xFFu) {
+            const __m512 top = _mm512_fmadd_ps(block_field(t10, ch), ax, _mm512_mul_ps(block_field(t00, ch), bxi));
+            const __m512 bottom = _mm512_fmadd_ps(block_field(t11, ch), ax, _mm512_mul_ps(block_field(t01, ch), bxi));
+            const __m512 sum = _mm512_fmadd_ps(bottom, ay, _mm512_mul_ps(top, byi));
+            out[k] = _mm512_mul_ps(unorm8::quotient(sum, ch.max), _mm512_set1_ps(1.0f / 65536.0f));
+            continue;
+        }
         const __m512 c00 = block_channel(t00, ch);
         __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_channel(t10, ch), w10));
         r = _mm512_add_ps(r, _mm512_mul_ps(block_channel(t01, ch), w01));

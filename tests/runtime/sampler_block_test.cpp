@@ -145,6 +145,70 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
     }
 }
 
+// Fixed8 LINEAR on UNORM fields of at most 8 bits is the exact bilinear sum of the taps' integer
+// values with weights in 1/256 units, rounded once (docs/texturing.md): each result must be the
+// float nearest the exact value, which the test works out in double from the texel bytes (the
+// exact value has at most 24 + 24 significant bits, so the double quotient is within 2^-53 of
+// it, far closer than the half ulp of float the check needs). Both paths, 8-, 5/6- and 4-bit
+// fields, random coordinates, CLAMP.
+TEST(SamplerFilter, Fixed8BilinearOfNarrowUnormIsTheCorrectlyRoundedExactSum) {
+    std::mt19937 rng(11);
+    struct Field { Format format; unsigned channel, shift, bits; };
+    const Field fields[] = {{Format::A8R8G8B8, 0, 16, 8}, {Format::A8R8G8B8, 3, 24, 8}, {Format::R5G6B5, 0, 11, 5},
+                            {Format::R5G6B5, 1, 5, 6},     {Format::A4R4G4B4, 3, 12, 4}};
+    for (const Field& f : fields) {
+        const uint32_t w = 13, h = 7;
+        const Texture texture = random_texture(rng, f.format, w, h, 1);
+        const Surface& level = texture.surface(0);
+        const unsigned bpp = f.format == Format::A8R8G8B8 ? 4 : 2;
+        auto value = [&](int64_t x, int64_t y) {
+            x = std::clamp<int64_t>(x, 0, w - 1);
+            y = std::clamp<int64_t>(y, 0, h - 1);
+            uint32_t word = 0;
+            std::memcpy(&word, level.bytes().data() + static_cast<size_t>(y) * level.row_pitch() + static_cast<size_t>(x) * bpp, bpp);
+            return static_cast<double>(word >> f.shift & ((1u << f.bits) - 1u));
+        };
+        for (const bool block : {true, false}) {
+            TextureSampler s;
+            s.set_texture(0, &texture);
+            s.set_block_path(block);
+            SamplerState st;
+            st.address_u = st.address_v = TextureAddress::Clamp;
+            st.mag_filter = st.min_filter = TextureFilter::Linear;
+            st.mip_filter = TextureFilter::None;
+            s.set_state(0, st);
+            s.prepare();
+            for (unsigned round = 0; round < 200; ++round) {
+                std::array<emu::FloatLanes, 4> coords{};
+                for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+                    coords[0][l] = std::uniform_real_distribution<float>(-0.1f, 1.1f)(rng);
+                    coords[1][l] = std::uniform_real_distribution<float>(-0.1f, 1.1f)(rng);
+                }
+                emu::TextureRequest r;
+                r.coordinates = &coords;
+                std::array<emu::FloatLanes, 4> texels;
+                s.sample(r, texels);
+                for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+                    // Taps and 8-bit weights as docs/texturing.md states them.
+                    const auto x = static_cast<int64_t>(std::floor((coords[0][l] * w - 0.5f) * 256.0f));
+                    const auto y = static_cast<int64_t>(std::floor((coords[1][l] * h - 0.5f) * 256.0f));
+                    const double ax = static_cast<double>(x & 255) / 256, ay = static_cast<double>(y & 255) / 256;
+                    const int64_t x0 = x >> 8, y0 = y >> 8;
+                    const double exact = ((value(x0, y0) * (1 - ax) + value(x0 + 1, y0) * ax) * (1 - ay) +
+                                          (value(x0, y0 + 1) * (1 - ax) + value(x0 + 1, y0 + 1) * ax) * ay) /
+                                         static_cast<double>((1u << f.bits) - 1u);
+                    const float got = texels[f.channel][l];
+                    const double error = std::abs(static_cast<double>(got) - exact);
+                    ASSERT_LE(error, std::abs(static_cast<double>(std::nextafter(got, 2.0f)) - exact))
+                        << "block " << block << " format " << static_cast<int>(f.format) << " lane " << l;
+                    ASSERT_LE(error, std::abs(static_cast<double>(std::nextafter(got, -1.0f)) - exact))
+                        << "block " << block << " format " << static_cast<int>(f.format) << " lane " << l;
+                }
+            }
+        }
+    }
+}
+
 // A hand-checked case through the block path: a 2x2 A8R8G8B8 texture, bilinear, CLAMP, at the
 // centre (u, v) = (0.5, 0.5): texel space (1, 1) - 0.5 = (0.5, 0.5), taps 0 and 1 with weight
 // 128/256 each, so every texel weighs 1/4. Red bytes 0, 255, 255, 255 -> 765/4/255 = 0.75.
