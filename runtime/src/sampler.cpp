@@ -856,11 +856,12 @@ SM2_AVX512 void block_lookup(const Context& c, const BlockLevels& levels, const 
 }
 
 // block_sample()'s per-lane set-up in registers: each lane's (u, v), divided by w for texldp,
-// and the texel-space lengths of the 4 quads' coarse derivatives (TR - TL, BL - TL) as
+// and the squared texel-space lengths of the 4 quads' coarse derivatives (TR - TL, BL - TL) as
 // to_texels() and length() compute them (float differences and products, then the sum of
-// squares and its root in double; NaN -> 0). lengths[q] is quad q's x length, lengths[4 + q] its y.
+// squares in double; block_lengths() takes the root). squares[q] is quad q's x length squared,
+// squares[4 + q] its y.
 SM2_AVX512 void block_coordinates(const Context& c, const emu::TextureRequest& request, BlockLanes& lanes,
-                                  std::array<double, 8>& lengths) {
+                                  std::array<double, 8>& squares) {
     const auto& in = *request.coordinates;
     __m512 u = _mm512_loadu_ps(in[0].data()), v = _mm512_loadu_ps(in[1].data());
     if (request.variant == emu::TextureVariant::Projected) {
@@ -880,8 +881,15 @@ SM2_AVX512 void block_coordinates(const Context& c, const emu::TextureRequest& r
     const __m512d y = _mm512_cvtps_pd(_mm512_castps512_ps256(tv));
     const __m512d zero = _mm512_setzero_pd();
     const __m512d sum = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(x, x), _mm512_mul_pd(y, y)), _mm512_mul_pd(zero, zero));
-    const __m512d len = _mm512_sqrt_pd(sum);
+    _mm512_storeu_pd(squares.data(), sum);
+}
+
+// The lengths of block_coordinates()'s squared lengths: the root, NaN -> 0 (as length()).
+SM2_AVX512 std::array<double, 8> block_lengths(const std::array<double, 8>& squares) {
+    const __m512d len = _mm512_sqrt_pd(_mm512_loadu_pd(squares.data()));
+    std::array<double, 8> lengths;
     _mm512_storeu_pd(lengths.data(), _mm512_maskz_mov_pd(_mm512_cmp_pd_mask(len, len, _CMP_ORD_Q), len));
+    return lengths;
 }
 
 SM2_AVX512 inline __m512i block_spread(__m512i quad_of_lane, const std::array<int32_t, 4>& quad_values) {
@@ -1002,15 +1010,19 @@ SM2_AVX512 void block_sample(const Context& c, const BlockLevels& levels, const 
     const auto& in = *request.coordinates;
     const bool biased = request.variant == emu::TextureVariant::Bias;
     BlockLanes lanes;
-    std::array<double, 8> lengths;
-    block_coordinates(c, request, lanes, lengths);
+    std::array<double, 8> squares;
+    block_coordinates(c, request, lanes, squares);
     // The LOD changes nothing when both filters agree and there are no mips to choose.
     const bool lod_matters = c.mip != Mip::None || c.mag != c.min;
-    if (!memo.valid || std::memcmp(memo.lengths.data(), lengths.data(), sizeof lengths) != 0) {
-        block_choose_levels(c, lod_matters, lengths, memo.l0, memo.l1, memo.frac, memo.linear);
-        memo.lengths = lengths;
+    // The lengths are a function of their squares: a batch with the last batch's squares (every
+    // batch of a screen-aligned pass) skips the roots too.
+    if (!memo.valid || std::memcmp(memo.squares.data(), squares.data(), sizeof squares) != 0) {
+        memo.lengths = block_lengths(squares);
+        block_choose_levels(c, lod_matters, memo.lengths, memo.l0, memo.l1, memo.frac, memo.linear);
+        memo.squares = squares;
         memo.valid = true;
     }
+    const auto& lengths = memo.lengths;
     const auto& l0 = memo.l0;
     const auto& l1 = memo.l1;
     const auto& frac = memo.frac;

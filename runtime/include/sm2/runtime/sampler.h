@@ -93,12 +93,13 @@ public:
     void prepare_stage(unsigned stage);  // prepare() for one stage (sample() does it on first use)
 
     struct BlockLevels;  // the block path's per-texture tables (sampler.cpp)
-    // The block path's last level choice per stage: the 4 quads' derivative lengths of the last
-    // batch and the levels they gave (a function of the lengths for a prepared stage, so a batch
-    // with the same lengths, as every batch of a screen-aligned pass, reuses them).
+    // The block path's last level choice per stage: the 4 quads' squared derivative lengths of
+    // the last batch, their lengths and the levels they gave (a function of the squares for a
+    // prepared stage, so a batch with the same squares, as every batch of a screen-aligned pass,
+    // reuses them).
     struct BatchLevelMemo {
         bool valid = false;
-        std::array<double, 8> lengths{};
+        std::array<double, 8> squares{}, lengths{};
         std::array<int32_t, 4> l0{}, l1{}, linear{};
         std::array<float, 4> frac{};
     };
