@@ -193,14 +193,15 @@ using BlockFormat = std::array<BlockChannel, 4>;
 // stage's context (built once per prepare(), not per lookup).
 struct TextureSampler::BlockLevels {
     static constexpr unsigned kMax = 16;
-    alignas(64) std::array<int32_t, kMax> width{}, height{}, row{};
+    alignas(64) std::array<int32_t, kMax> width{}, height{}, depth{}, row{}, slice{};
     alignas(64) std::array<const std::byte*, kMax> base{};
     // Where every level lies within 2^31 bytes of `anchor`: each level's start as a 32-bit
     // offset from it, so a gather takes 16 32-bit offsets instead of two halves of 64-bit
-    // addresses (offsets32 false: the 64-bit gathers).
-    alignas(64) std::array<int32_t, kMax> offset{};
+    // addresses (offsets32 false: the 64-bit gathers), and where its bytes end.
+    alignas(64) std::array<int32_t, kMax> offset{}, end{};
     const std::byte* anchor = nullptr;
     bool offsets32 = false;
+    unsigned texel_bytes = 4;  // 1, 2 (narrow texels: offsets32 only) or 4
     Context context;
     BlockFormat format;  // how texels decode (looked up once per prepare(), not per lookup)
 };
@@ -598,18 +599,19 @@ Float4 lookup_any(const Context& c, float u, float v, float w, int face, const L
 // writes every lane: its quads' lanes from their lookups, the rest as a harmless lookup of level
 // c.first at (0, 0)).
 struct BlockLanes {
-    alignas(64) std::array<float, emu::kBatchLanes> u, v, frac;
+    alignas(64) std::array<float, emu::kBatchLanes> u, v, w, frac;
     alignas(64) std::array<int32_t, emu::kBatchLanes> l0, l1, linear;
 };
 
 using BlockLevels = TextureSampler::BlockLevels;
 
-// The formats of 4-byte texels whose channels are all of those kinds (A8R8G8B8, X8R8G8B8,
-// A8B8G8R8, X8B8G8R8, A2B10G10R10, A2R10G10B10, G16R16, R32F, ...).
+// The formats of 1-, 2- and 4-byte texels whose channels are all of those kinds (A8R8G8B8,
+// X8R8G8B8, A8B8G8R8, X8B8G8R8, A2B10G10R10, A2R10G10B10, G16R16, R32F, R5G6B5, A4R4G4B4,
+// A1R5G5B5, L8, A8L8, A8, L16, ...).
 std::optional<BlockFormat> block_format(Format f) {
     const layout::Layout lay = layout::layout_of(f);
     const FormatInfo* info = format_info(f);
-    if (!lay.valid || info == nullptr || info->bytes != 4) return std::nullopt;
+    if (!lay.valid || info == nullptr || (info->bytes != 4 && info->bytes != 2 && info->bytes != 1)) return std::nullopt;
     BlockFormat format;
     for (unsigned k = 0; k < 4; ++k) {
         const layout::Channel& ch = lay.rgba[k];
@@ -635,33 +637,40 @@ std::optional<BlockFormat> block_format(Format f) {
 }
 
 bool block_address_supported(TextureAddress mode, bool all_pow2) {
-    return mode == TextureAddress::Clamp || (mode == TextureAddress::Wrap && all_pow2);
+    return mode == TextureAddress::Clamp || mode == TextureAddress::Border || (mode == TextureAddress::Wrap && all_pow2);
 }
 
 // Whether the 16-lane path covers this context; fills the level tables.
 bool block_supported(const Context& c, BlockLevels& levels) {
-    if (c.cube || c.volume || c.dxt || c.srgb || c.anisotropic) return false;
+    if (c.cube || c.dxt || c.srgb || c.anisotropic) return false;
     const std::optional<BlockFormat> format = block_format(c.format);
     if (!format) return false;
     levels.format = *format;
-    if (c.texture->levels() > BlockLevels::kMax || c.bpp != 4) return false;
+    levels.texel_bytes = c.bpp;
+    if (c.texture->levels() > BlockLevels::kMax || (c.bpp != 4 && c.bpp != 2 && c.bpp != 1)) return false;
     if (!cpu_has_avx512()) return false;
     bool all_pow2 = true;
     const unsigned count = c.texture->levels();
     for (unsigned l = 0; l < count; ++l) {
         const Surface& s = c.texture->surface(l);
-        if (s.width() > (1u << 24) || s.height() > (1u << 24) || s.row_pitch() * s.height() > (size_t{1} << 31))
+        if (s.width() > (1u << 24) || s.height() > (1u << 24) || s.depth() > (1u << 24) ||
+            s.bytes().size() > (size_t{1} << 31) || s.slice_pitch() > (size_t{1} << 31))
             return false;
         levels.width[l] = static_cast<int32_t>(s.width());
         levels.height[l] = static_cast<int32_t>(s.height());
+        levels.depth[l] = static_cast<int32_t>(s.depth());
         levels.row[l] = static_cast<int32_t>(s.row_pitch());
+        levels.slice[l] = static_cast<int32_t>(s.slice_pitch());
         levels.base[l] = s.bytes().data();
-        all_pow2 = all_pow2 && std::has_single_bit(s.width()) && std::has_single_bit(s.height());
+        all_pow2 = all_pow2 && std::has_single_bit(s.width()) && std::has_single_bit(s.height()) &&
+                   (!c.volume || std::has_single_bit(s.depth()));
     }
     for (unsigned l = count; l < BlockLevels::kMax; ++l) {  // never indexed; kept valid anyway
         levels.width[l] = levels.width[count - 1];
         levels.height[l] = levels.height[count - 1];
+        levels.depth[l] = levels.depth[count - 1];
         levels.row[l] = levels.row[count - 1];
+        levels.slice[l] = levels.slice[count - 1];
         levels.base[l] = levels.base[count - 1];
     }
     // 32-bit offsets when every byte of every level lies within [anchor, anchor + 2^31).
@@ -674,10 +683,16 @@ bool block_supported(const Context& c, BlockLevels& levels) {
     }
     levels.offsets32 = high - low < (uintptr_t{1} << 31);
     levels.anchor = reinterpret_cast<const std::byte*>(low);
-    for (unsigned l = 0; l < BlockLevels::kMax; ++l)
+    for (unsigned l = 0; l < BlockLevels::kMax; ++l) {
+        const size_t size = c.texture->surface(std::min(l, count - 1)).bytes().size();
         levels.offset[l] = levels.offsets32 ? static_cast<int32_t>(reinterpret_cast<uintptr_t>(levels.base[l]) - low) : 0;
+        levels.end[l] = levels.offsets32 ? levels.offset[l] + static_cast<int32_t>(size) : 0;
+    }
     levels.context = c;
-    return block_address_supported(c.address[0], all_pow2) && block_address_supported(c.address[1], all_pow2);
+    // Narrow texels and volume slices are read by 32-bit offsets only.
+    if ((c.bpp != 4 || c.volume) && !levels.offsets32) return false;
+    return block_address_supported(c.address[0], all_pow2) && block_address_supported(c.address[1], all_pow2) &&
+           (!c.volume || block_address_supported(c.address[2], all_pow2));
 }
 
 // GCC 12's AVX-512 headers trip -Wuninitialized on their own _mm512_undefined_*() self-init.
@@ -689,15 +704,24 @@ bool block_supported(const Context& c, BlockLevels& levels) {
 
 // linear_taps() and the POINT index of filter_level() for 16 lanes: i0, i1 addressed, a the
 // weight of i1 (0 for POINT lanes, whose i1 is never weighted).
+// BORDER: outside0/outside1 mark the lanes whose i0/i1 lies outside the level (they read
+// BORDERCOLOR; their index is clamped so that the load stays in the level).
 struct BlockTaps {
     __m512i i0, i1;
     __m512 a;
+    __mmask16 outside0 = 0, outside1 = 0;
 };
 
 SM2_AVX512 inline __m512i block_address(TextureAddress mode, __m512i i, __m512i n) {
     const __m512i last = _mm512_sub_epi32(n, _mm512_set1_epi32(1));
-    if (mode == TextureAddress::Clamp) return _mm512_max_epi32(_mm512_min_epi32(i, last), _mm512_setzero_si512());
+    if (mode == TextureAddress::Clamp || mode == TextureAddress::Border)
+        return _mm512_max_epi32(_mm512_min_epi32(i, last), _mm512_setzero_si512());
     return _mm512_and_si512(i, last);  // WRAP on a power of two
+}
+
+SM2_AVX512 inline __mmask16 block_outside(TextureAddress mode, __m512i i, __m512i n) {
+    if (mode != TextureAddress::Border) return 0;
+    return static_cast<__mmask16>(_mm512_cmplt_epi32_mask(i, _mm512_setzero_si512()) | _mm512_cmpge_epi32_mask(i, n));
 }
 
 SM2_AVX512 inline BlockTaps block_taps(const Context& c, __m512 coord, __m512i n, TextureAddress mode, __mmask16 linear) {
@@ -721,8 +745,8 @@ SM2_AVX512 inline BlockTaps block_taps(const Context& c, __m512 coord, __m512i n
     // POINT lanes: floor of the unshifted coordinate, weight 0.
     index = _mm512_mask_mov_ps(_mm512_roundscale_ps(t, _MM_FROUND_TO_NEG_INF), linear, index);
     a = _mm512_maskz_mov_ps(linear, a);
-    const __m512i i = _mm512_cvttps_epi32(index);
-    return {block_address(mode, i, n), block_address(mode, _mm512_add_epi32(i, _mm512_set1_epi32(1)), n), a};
+    const __m512i i = _mm512_cvttps_epi32(index), next = _mm512_add_epi32(i, _mm512_set1_epi32(1));
+    return {block_address(mode, i, n), block_address(mode, next, n), a, block_outside(mode, i, n), block_outside(mode, next, n)};
 }
 
 // The texel at each lane's byte offset and the one after it, as two 32-bit words per lane, for
@@ -767,7 +791,84 @@ SM2_AVX512 inline __m512 block_channel(__m512i texels, const BlockChannel& ch) {
     return unorm8::quotient(_mm512_cvtepi32_ps(field), ch.max);
 }
 
-// filter_level() on each lane's level `level` (POINT or LINEAR per lane).
+// Channel k of 16 taps, BORDERCOLOR's channel k on the lanes of `outside`.
+SM2_AVX512 inline __m512 block_tap(const Context& c, __m512i texels, const BlockChannel& ch, unsigned k, __mmask16 outside) {
+    const __m512 value = block_channel(texels, ch);
+    return outside ? _mm512_mask_mov_ps(value, outside, _mm512_set1_ps(c.border[k])) : value;
+}
+
+// 32-bit words at the byte offsets `at` (from levels.anchor) of the lanes in `lanes` (others 0):
+// a narrow texel in the low bits of its word. A word would reach up to 3 bytes past a narrow
+// texel, so a lane whose load would pass its level's end (`end`) reads the bytes up to it.
+SM2_AVX512 inline __m512i block_load_words(const BlockLevels& levels, __m512i at, __m512i end, __mmask16 lanes) {
+    const __mmask16 inside = _mm512_mask_cmple_epi32_mask(lanes, _mm512_add_epi32(at, _mm512_set1_epi32(4)), end);
+    __m512i words = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), inside, at, levels.anchor, 1);
+    if (const auto last = static_cast<__mmask16>(lanes & ~inside)) {
+        alignas(64) std::array<int32_t, emu::kBatchLanes> offset, stop;
+        alignas(64) std::array<uint32_t, emu::kBatchLanes> word;
+        _mm512_store_si512(offset.data(), at);
+        _mm512_store_si512(stop.data(), end);
+        _mm512_store_si512(word.data(), words);
+        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+            if (!(last >> l & 1u)) continue;
+            word[l] = 0;
+            std::memcpy(&word[l], levels.anchor + offset[l], static_cast<size_t>(stop[l] - offset[l]));
+        }
+        words = _mm512_load_si512(word.data());
+    }
+    return words;
+}
+
+// The four taps (x0, y0), (x1, y0), (x0, y1), (x1, y1) of one slice (`slice_start`: the byte
+// offset of the lane's slice from levels.anchor; 64-bit addresses: slice 0 of `base`).
+struct BlockQuad {
+    __m512i t00, t10, t01, t11;
+};
+SM2_AVX512 inline BlockQuad block_fetch(const BlockLevels& levels, const BlockTaps& tx, const BlockTaps& ty, __m512i row,
+                                        __m512i slice_start, __m512i end, __m512i base_lo, __m512i base_hi) {
+    BlockQuad q;
+    if (!levels.offsets32) {
+        q.t00 = block_gather(tx.i0, ty.i0, row, base_lo, base_hi);
+        q.t10 = block_gather(tx.i1, ty.i0, row, base_lo, base_hi);
+        q.t01 = block_gather(tx.i0, ty.i1, row, base_lo, base_hi);
+        q.t11 = block_gather(tx.i1, ty.i1, row, base_lo, base_hi);
+        return q;
+    }
+    const __m512i row0 = _mm512_add_epi32(_mm512_mullo_epi32(ty.i0, row), slice_start);
+    const __m512i row1 = _mm512_add_epi32(_mm512_mullo_epi32(ty.i1, row), slice_start);
+    // Where i1 = i0 + 1 (every lane but those on a level's right edge) one load reads both
+    // texels of a row: half the gathered elements. Edge lanes read each texel alone.
+    const __mmask16 adjacent = _mm512_cmpeq_epi32_mask(tx.i1, _mm512_add_epi32(tx.i0, _mm512_set1_epi32(1)));
+    const auto edge = static_cast<__mmask16>(~adjacent);
+    if (levels.texel_bytes == 4) {
+        const __m512i x0 = _mm512_slli_epi32(tx.i0, 2), x1 = _mm512_slli_epi32(tx.i1, 2);
+        block_gather_pairs(_mm512_add_epi32(row0, x0), adjacent, levels.anchor, q.t00, q.t10);
+        block_gather_pairs(_mm512_add_epi32(row1, x0), adjacent, levels.anchor, q.t01, q.t11);
+        if (edge) {
+            q.t00 = _mm512_mask_i32gather_epi32(q.t00, edge, _mm512_add_epi32(row0, x0), levels.anchor, 1);
+            q.t10 = _mm512_mask_i32gather_epi32(q.t10, edge, _mm512_add_epi32(row0, x1), levels.anchor, 1);
+            q.t01 = _mm512_mask_i32gather_epi32(q.t01, edge, _mm512_add_epi32(row1, x0), levels.anchor, 1);
+            q.t11 = _mm512_mask_i32gather_epi32(q.t11, edge, _mm512_add_epi32(row1, x1), levels.anchor, 1);
+        }
+        return q;
+    }
+    // Narrow texels (1 or 2 bytes): one 32-bit word holds a texel and, for adjacent lanes, the
+    // next one (the fields decoded are those of the low texel; the bits above are ignored).
+    const auto shift = static_cast<unsigned>(levels.texel_bytes == 2 ? 1 : 0);
+    const __m512i x0 = _mm512_slli_epi32(tx.i0, shift), x1 = _mm512_slli_epi32(tx.i1, shift);
+    const __m512i next = _mm512_set1_epi32(static_cast<int32_t>(8 * levels.texel_bytes));
+    q.t00 = block_load_words(levels, _mm512_add_epi32(row0, x0), end, 0xFFFF);
+    q.t01 = block_load_words(levels, _mm512_add_epi32(row1, x0), end, 0xFFFF);
+    q.t10 = _mm512_srlv_epi32(q.t00, next);
+    q.t11 = _mm512_srlv_epi32(q.t01, next);
+    if (edge) {
+        q.t10 = _mm512_mask_mov_epi32(q.t10, edge, block_load_words(levels, _mm512_add_epi32(row0, x1), end, edge));
+        q.t11 = _mm512_mask_mov_epi32(q.t11, edge, block_load_words(levels, _mm512_add_epi32(row1, x1), end, edge));
+    }
+    return q;
+}
+
+// filter_level() on each lane's level `level` (POINT or LINEAR per lane), 2D or volume.
 SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, const BlockFormat& format, __m512i level,
                                    const BlockLanes& in, __mmask16 linear, __m512 (&out)[4]) {
     const __m512i w = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.width.data()));
@@ -779,34 +880,42 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
         _mm512_permutex2var_epi64(bases_lo, _mm512_cvtepi32_epi64(_mm512_castsi512_si256(level)), bases_hi);
     const __m512i base_hi =
         _mm512_permutex2var_epi64(bases_lo, _mm512_cvtepi32_epi64(_mm512_extracti64x4_epi64(level, 1)), bases_hi);
+    const __m512i start = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.offset.data()));
+    const __m512i end = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.end.data()));
     const BlockTaps tx = block_taps(c, _mm512_load_ps(in.u.data()), w, c.address[0], linear);
     const BlockTaps ty = block_taps(c, _mm512_load_ps(in.v.data()), h, c.address[1], linear);
-    __m512i t00, t10, t01, t11;
-    if (levels.offsets32) {
-        // Where i1 = i0 + 1 (every lane but those on a level's right edge) one 64-bit load reads
-        // both texels of a row: half the gathered elements. Edge lanes gather each texel alone.
-        const __m512i start = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.offset.data()));
-        const __m512i row0 = _mm512_add_epi32(_mm512_mullo_epi32(ty.i0, row), start);
-        const __m512i row1 = _mm512_add_epi32(_mm512_mullo_epi32(ty.i1, row), start);
-        const __m512i x0 = _mm512_slli_epi32(tx.i0, 2), x1 = _mm512_slli_epi32(tx.i1, 2);
-        const __mmask16 adjacent = _mm512_cmpeq_epi32_mask(tx.i1, _mm512_add_epi32(tx.i0, _mm512_set1_epi32(1)));
-        block_gather_pairs(_mm512_add_epi32(row0, x0), adjacent, levels.anchor, t00, t10);
-        block_gather_pairs(_mm512_add_epi32(row1, x0), adjacent, levels.anchor, t01, t11);
-        const auto edge = static_cast<__mmask16>(~adjacent);
-        if (edge) {
-            t00 = _mm512_mask_i32gather_epi32(t00, edge, _mm512_add_epi32(row0, x0), levels.anchor, 1);
-            t10 = _mm512_mask_i32gather_epi32(t10, edge, _mm512_add_epi32(row0, x1), levels.anchor, 1);
-            t01 = _mm512_mask_i32gather_epi32(t01, edge, _mm512_add_epi32(row1, x0), levels.anchor, 1);
-            t11 = _mm512_mask_i32gather_epi32(t11, edge, _mm512_add_epi32(row1, x1), levels.anchor, 1);
-        }
-    } else {
-        t00 = block_gather(tx.i0, ty.i0, row, base_lo, base_hi);
-        t10 = block_gather(tx.i1, ty.i0, row, base_lo, base_hi);
-        t01 = block_gather(tx.i0, ty.i1, row, base_lo, base_hi);
-        t11 = block_gather(tx.i1, ty.i1, row, base_lo, base_hi);
-    }
     const __m512 one = _mm512_set1_ps(1.0f);
     const __m512 bx = _mm512_sub_ps(one, tx.a), by = _mm512_sub_ps(one, ty.a);
+    if (c.volume) {
+        // Two slices, each summed as a 2D level with the slice's weight folded into the tap
+        // weights, then added (filter_level()'s plane()): ((1-a)(1-b)) wz etc., in that order.
+        const __m512i d = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.depth.data()));
+        const __m512i slice = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.slice.data()));
+        const BlockTaps tz = block_taps(c, _mm512_load_ps(in.w.data()), d, c.address[2], linear);
+        __m512 sum[2][4];
+        __m512 point[4];
+        for (unsigned p = 0; p < 2; ++p) {
+            const __m512 wz = p == 0 ? _mm512_sub_ps(one, tz.a) : tz.a;
+            const __m512i z = p == 0 ? tz.i0 : tz.i1;
+            const auto oz = static_cast<__mmask16>(p == 0 ? tz.outside0 : tz.outside1);
+            const auto o00 = static_cast<__mmask16>(tx.outside0 | ty.outside0 | oz), o10 = static_cast<__mmask16>(tx.outside1 | ty.outside0 | oz);
+            const auto o01 = static_cast<__mmask16>(tx.outside0 | ty.outside1 | oz), o11 = static_cast<__mmask16>(tx.outside1 | ty.outside1 | oz);
+            const BlockQuad q = block_fetch(levels, tx, ty, row, _mm512_add_epi32(start, _mm512_mullo_epi32(z, slice)), end,
+                                            base_lo, base_hi);
+            const __m512 w00 = _mm512_mul_ps(_mm512_mul_ps(bx, by), wz), w10 = _mm512_mul_ps(_mm512_mul_ps(tx.a, by), wz);
+            const __m512 w01 = _mm512_mul_ps(_mm512_mul_ps(bx, ty.a), wz), w11 = _mm512_mul_ps(_mm512_mul_ps(tx.a, ty.a), wz);
+            for (unsigned k = 0; k < 4; ++k) {
+                const __m512 c00 = block_tap(c, q.t00, format[k], k, o00);
+                if (p == 0) point[k] = c00;
+                __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_tap(c, q.t10, format[k], k, o10), w10));
+                r = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, q.t01, format[k], k, o01), w01));
+                sum[p][k] = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, q.t11, format[k], k, o11), w11));
+            }
+        }
+        for (unsigned k = 0; k < 4; ++k) out[k] = _mm512_mask_mov_ps(point[k], linear, _mm512_add_ps(sum[0][k], sum[1][k]));
+        return;
+    }
+    const BlockQuad q = block_fetch(levels, tx, ty, row, start, end, base_lo, base_hi);
     const __m512 w00 = _mm512_mul_ps(bx, by), w10 = _mm512_mul_ps(tx.a, by);
     const __m512 w01 = _mm512_mul_ps(bx, ty.a), w11 = _mm512_mul_ps(tx.a, ty.a);
     // exact_bilinear()'s integer sums for fixed8 weights on UNORM fields of at most 8 bits:
@@ -815,22 +924,33 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
     const __m512 full = _mm512_set1_ps(kFixedScale);
     const __m512 ax = _mm512_mul_ps(tx.a, full), ay = _mm512_mul_ps(ty.a, full);
     const __m512 bxi = _mm512_sub_ps(full, ax), byi = _mm512_sub_ps(full, ay);
+    const auto o00 = static_cast<__mmask16>(tx.outside0 | ty.outside0), o10 = static_cast<__mmask16>(tx.outside1 | ty.outside0);
+    const auto o01 = static_cast<__mmask16>(tx.outside0 | ty.outside1), o11 = static_cast<__mmask16>(tx.outside1 | ty.outside1);
+    // Lanes with a BORDER tap take the float sums (exact_bilinear() leaves them), POINT lanes
+    // included (their one tap is t00).
+    const auto bordered = static_cast<__mmask16>(o00 | o10 | o01 | o11);
     for (unsigned k = 0; k < 4; ++k) {
         const BlockChannel& ch = format[k];
-        if (c.fixed && ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 0xFFu) {
-            const __m512 top = _mm512_fmadd_ps(block_field(t10, ch), ax, _mm512_mul_ps(block_field(t00, ch), bxi));
-            const __m512 bottom = _mm512_fmadd_ps(block_field(t11, ch), ax, _mm512_mul_ps(block_field(t01, ch), bxi));
+        const bool exact = c.fixed && ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 0xFFu;
+        __m512 exact_sum = _mm512_setzero_ps();
+        if (exact) {
+            const __m512 top = _mm512_fmadd_ps(block_field(q.t10, ch), ax, _mm512_mul_ps(block_field(q.t00, ch), bxi));
+            const __m512 bottom = _mm512_fmadd_ps(block_field(q.t11, ch), ax, _mm512_mul_ps(block_field(q.t01, ch), bxi));
             const __m512 sum = _mm512_fmadd_ps(bottom, ay, _mm512_mul_ps(top, byi));
-            out[k] = _mm512_mul_ps(unorm8::quotient(sum, ch.max), _mm512_set1_ps(1.0f / 65536.0f));
-            continue;
+            exact_sum = _mm512_mul_ps(unorm8::quotient(sum, ch.max), _mm512_set1_ps(1.0f / 65536.0f));
+            if (!bordered) {
+                out[k] = exact_sum;
+                continue;
+            }
         }
-        const __m512 c00 = block_channel(t00, ch);
-        __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_channel(t10, ch), w10));
-        r = _mm512_add_ps(r, _mm512_mul_ps(block_channel(t01, ch), w01));
-        r = _mm512_add_ps(r, _mm512_mul_ps(block_channel(t11, ch), w11));
+        const __m512 c00 = block_tap(c, q.t00, ch, k, o00);
+        __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_tap(c, q.t10, ch, k, o10), w10));
+        r = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, q.t01, ch, k, o01), w01));
+        r = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, q.t11, ch, k, o11), w11));
         // POINT lanes read their texel as it is (filter_level() fetches it): the weighted sum
         // equals it for finite non-negative values, not for a float texel beside an infinity.
-        out[k] = _mm512_mask_mov_ps(c00, linear, r);
+        r = _mm512_mask_mov_ps(c00, linear, r);
+        out[k] = exact ? _mm512_mask_mov_ps(exact_sum, bordered, r) : r;
     }
 }
 
@@ -855,7 +975,7 @@ SM2_AVX512 void block_lookup(const Context& c, const BlockLevels& levels, const 
         _mm512_storeu_ps(texels[k].data(), _mm512_mask_mov_ps(_mm512_set1_ps(k == 3 ? 1.0f : 0.0f), used, r[k]));
 }
 
-// block_sample()'s per-lane set-up in registers: each lane's (u, v), divided by w for texldp,
+// block_sample()'s per-lane set-up in registers: each lane's (u, v) (and r for volumes), divided by w for texldp,
 // and the squared texel-space lengths of the 4 quads' coarse derivatives (TR - TL, BL - TL) as
 // to_texels() and length() compute them (float differences and products, then the sum of
 // squares in double; block_lengths() takes the root). squares[q] is quad q's x length squared,
@@ -864,23 +984,28 @@ SM2_AVX512 void block_coordinates(const Context& c, const emu::TextureRequest& r
                                   std::array<double, 8>& squares) {
     const auto& in = *request.coordinates;
     __m512 u = _mm512_loadu_ps(in[0].data()), v = _mm512_loadu_ps(in[1].data());
+    __m512 r = c.volume ? _mm512_loadu_ps(in[2].data()) : _mm512_setzero_ps();  // volumes' third coordinate
     if (request.variant == emu::TextureVariant::Projected) {
         const __m512 w = _mm512_loadu_ps(in[3].data());  // IEEE: w = 0 gives +-inf or NaN
         u = _mm512_div_ps(u, w);
         v = _mm512_div_ps(v, w);
+        if (c.volume) r = _mm512_div_ps(r, w);
     }
     _mm512_store_ps(lanes.u.data(), u);
     _mm512_store_ps(lanes.v.data(), v);
+    _mm512_store_ps(lanes.w.data(), r);
     const __m512i to = _mm512_setr_epi32(1, 5, 9, 13, 2, 6, 10, 14, 0, 0, 0, 0, 0, 0, 0, 0);
     const __m512i from = _mm512_setr_epi32(0, 4, 8, 12, 0, 4, 8, 12, 0, 0, 0, 0, 0, 0, 0, 0);
     const __m512 du = _mm512_sub_ps(_mm512_permutexvar_ps(to, u), _mm512_permutexvar_ps(from, u));
     const __m512 dv = _mm512_sub_ps(_mm512_permutexvar_ps(to, v), _mm512_permutexvar_ps(from, v));
     const __m512 tu = _mm512_mul_ps(du, _mm512_set1_ps(static_cast<float>(c.texture->width())));
     const __m512 tv = _mm512_mul_ps(dv, _mm512_set1_ps(static_cast<float>(c.texture->height())));
+    const __m512 dr = _mm512_sub_ps(_mm512_permutexvar_ps(to, r), _mm512_permutexvar_ps(from, r));
+    const __m512 tr = c.volume ? _mm512_mul_ps(dr, _mm512_set1_ps(static_cast<float>(c.texture->depth()))) : _mm512_setzero_ps();
     const __m512d x = _mm512_cvtps_pd(_mm512_castps512_ps256(tu));
     const __m512d y = _mm512_cvtps_pd(_mm512_castps512_ps256(tv));
-    const __m512d zero = _mm512_setzero_pd();
-    const __m512d sum = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(x, x), _mm512_mul_pd(y, y)), _mm512_mul_pd(zero, zero));
+    const __m512d z = _mm512_cvtps_pd(_mm512_castps512_ps256(tr));
+    const __m512d sum = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(x, x), _mm512_mul_pd(y, y)), _mm512_mul_pd(z, z));
     _mm512_storeu_pd(squares.data(), sum);
 }
 
@@ -911,6 +1036,7 @@ SM2_AVX512 void block_spread_choices(const std::array<int32_t, 4>& l0, const std
     const __m512 zero = _mm512_setzero_ps();
     _mm512_store_ps(lanes.u.data(), _mm512_mask_mov_ps(zero, used, _mm512_load_ps(lanes.u.data())));
     _mm512_store_ps(lanes.v.data(), _mm512_mask_mov_ps(zero, used, _mm512_load_ps(lanes.v.data())));
+    _mm512_store_ps(lanes.w.data(), _mm512_mask_mov_ps(zero, used, _mm512_load_ps(lanes.w.data())));
 }
 
 

@@ -19,8 +19,8 @@
 namespace sm2::runtime {
 namespace {
 
-Texture random_texture(std::mt19937& rng, Format format, uint32_t w, uint32_t h, uint32_t levels) {
-    Texture t = Texture::create_2d(format, w, h, levels);
+Texture random_texture(std::mt19937& rng, Format format, uint32_t w, uint32_t h, uint32_t levels, uint32_t d = 0) {
+    Texture t = d == 0 ? Texture::create_2d(format, w, h, levels) : Texture::create_volume(format, w, h, d, levels);
     for (uint32_t l = 0; l < t.levels(); ++l) {
         auto& bytes = t.surface(l).bytes();
         for (auto& b : bytes) b = static_cast<std::byte>(rng() & 0xFFu);
@@ -49,6 +49,7 @@ SamplerState random_state(std::mt19937& rng) {
     SamplerState s;
     s.address_u = kModes[rng() % 6];
     s.address_v = kModes[rng() % 6];
+    s.address_w = kModes[rng() % 6];
     s.mag_filter = kFilters[rng() % 4];
     s.min_filter = kFilters[rng() % 5];
     s.mip_filter = kFilters[rng() % 4];
@@ -81,7 +82,8 @@ emu::TextureRequest random_request(std::mt19937& rng, std::array<emu::FloatLanes
             const float su = u + x * du + y * eu, sv = v + x * dv + y * ev;
             coords[0][l] = shared ? su : special_or(rng, su);
             coords[1][l] = shared ? sv : special_or(rng, sv);
-            coords[2][l] = unit(rng);
+            // (volumes: a third coordinate varying like the first in shared requests)
+            coords[2][l] = shared ? 0.45f + x * du + y * eu : special_or(rng, unit(rng));
             coords[3][l] = shared ? 1.0f : rng() % 2 ? special_or(rng, unit(rng) * 4.0f) : 1.0f;
         }
     }
@@ -95,15 +97,22 @@ emu::TextureRequest random_request(std::mt19937& rng, std::array<emu::FloatLanes
 
 TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
     std::mt19937 rng(20261124);
-    const Format formats[] = {Format::A8R8G8B8, Format::X8R8G8B8, Format::A8B8G8R8, Format::R5G6B5,
-                              Format::X8B8G8R8, Format::A2B10G10R10, Format::A2R10G10B10, Format::G16R16,
-                              Format::R32F};
-    unsigned block_requests = 0, total = 0;
-    for (unsigned round = 0; round < 300; ++round) {
+    // 4-byte, 2-byte and 1-byte texels; a third of the textures are volumes.
+    const Format formats[] = {Format::A8R8G8B8,  Format::X8R8G8B8, Format::A8B8G8R8,  Format::R5G6B5,
+                              Format::X8B8G8R8,  Format::A2B10G10R10, Format::A2R10G10B10, Format::G16R16,
+                              Format::R32F,      Format::A4R4G4B4, Format::A1R5G5B5,  Format::L8,
+                              Format::A8L8,      Format::A8,       Format::L16,       Format::R3G3B2,
+                              Format::A8R3G3B2};
+    unsigned block_requests = 0, total = 0, volume_block_requests = 0, narrow_block_requests = 0;
+    for (unsigned round = 0; round < 450; ++round) {
         const Format format = formats[rng() % std::size(formats)];
         const bool pow2 = rng() % 4 != 0;
-        const uint32_t w = pow2 ? 1u << (rng() % 8) : 1 + rng() % 70, h = pow2 ? 1u << (rng() % 8) : 1 + rng() % 70;
-        const Texture texture = random_texture(rng, format, w, h, pow2 ? 0 : 1);
+        const bool volume = rng() % 3 == 0;
+        const uint32_t side = volume ? 6 : 8, odd = volume ? 20 : 70;
+        const uint32_t w = pow2 ? 1u << (rng() % side) : 1 + rng() % odd, h = pow2 ? 1u << (rng() % side) : 1 + rng() % odd;
+        const uint32_t d = !volume ? 0 : pow2 ? 1u << (rng() % 5) : 1 + rng() % 9;
+        const Texture texture = random_texture(rng, format, w, h, pow2 ? 0 : 1, d);
+        const bool narrow = format_info(format)->bytes < 4;
         TextureSampler block, lanes;
         block.set_texture(0, &texture);
         lanes.set_texture(0, &texture);
@@ -126,6 +135,8 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
                 lanes.sample(request, b);
                 ++total;
                 block_requests += applies ? 1 : 0;
+                volume_block_requests += applies && volume ? 1 : 0;
+                narrow_block_requests += applies && narrow ? 1 : 0;
                 // (R32F's random texels include NaNs; which NaN a sum of two gives depends on the
                 // operand order a compiler picks, and the engine stores every NaN as one pattern.)
                 for (unsigned c = 0; c < 4; ++c)
@@ -142,6 +153,8 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
     // the block path for the test to mean anything.
     if (cpu_has_avx512()) {
         EXPECT_GT(block_requests, total / 5);
+        EXPECT_GT(volume_block_requests, total / 20);
+        EXPECT_GT(narrow_block_requests, total / 10);
     }
 }
 
