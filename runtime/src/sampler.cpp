@@ -181,7 +181,8 @@ Context make_context(const Texture& texture, const SamplerState& s, FilterPrecis
 // 32-bit float, or a constant 0 or 1 for a channel the format lacks.
 struct BlockChannel {
     enum class Kind : uint8_t { Zero, One, Unorm, Float } kind = Kind::Zero;
-    unsigned shift = 0;
+    unsigned high = 0;   // 8-byte texels: 1 when the field lies in the second 32-bit word
+    unsigned shift = 0;  // within its word
     uint32_t mask = 0;   // 2^n - 1 for Unorm
     float max = 1.0f;    // float(2^n - 1)
 };
@@ -201,7 +202,7 @@ struct TextureSampler::BlockLevels {
     alignas(64) std::array<int32_t, kMax> offset{}, end{};
     const std::byte* anchor = nullptr;
     bool offsets32 = false;
-    unsigned texel_bytes = 4;  // 1, 2 (narrow texels: offsets32 only) or 4
+    unsigned texel_bytes = 4;  // 1, 2 (narrow texels), 4 or 8 (two words); all but 4: offsets32 only
     Context context;
     BlockFormat format;  // how texels decode (looked up once per prepare(), not per lookup)
 };
@@ -605,13 +606,14 @@ struct BlockLanes {
 
 using BlockLevels = TextureSampler::BlockLevels;
 
-// The formats of 1-, 2- and 4-byte texels whose channels are all of those kinds (A8R8G8B8,
-// X8R8G8B8, A8B8G8R8, X8B8G8R8, A2B10G10R10, A2R10G10B10, G16R16, R32F, R5G6B5, A4R4G4B4,
-// A1R5G5B5, L8, A8L8, A8, L16, ...).
+// The formats of 1-, 2-, 4- and 8-byte texels whose channels are all of those kinds, each
+// within one 32-bit word (A8R8G8B8, X8R8G8B8, A8B8G8R8, X8B8G8R8, A2B10G10R10, A2R10G10B10,
+// G16R16, R32F, R5G6B5, A4R4G4B4, A1R5G5B5, L8, A8L8, A8, L16, A16B16G16R16, G32R32F, ...).
 std::optional<BlockFormat> block_format(Format f) {
     const layout::Layout lay = layout::layout_of(f);
     const FormatInfo* info = format_info(f);
-    if (!lay.valid || info == nullptr || (info->bytes != 4 && info->bytes != 2 && info->bytes != 1)) return std::nullopt;
+    if (!lay.valid || info == nullptr || (info->bytes != 8 && info->bytes != 4 && info->bytes != 2 && info->bytes != 1))
+        return std::nullopt;
     BlockFormat format;
     for (unsigned k = 0; k < 4; ++k) {
         const layout::Channel& ch = lay.rgba[k];
@@ -620,15 +622,17 @@ std::optional<BlockFormat> block_format(Format f) {
         case layout::Type::Zero: b.kind = BlockChannel::Kind::Zero; break;
         case layout::Type::One: b.kind = BlockChannel::Kind::One; break;
         case layout::Type::Unorm:
-            if (ch.bits > 16) return std::nullopt;
+            if (ch.bits > 16 || ch.shift % 32 + ch.bits > 32) return std::nullopt;
             b.kind = BlockChannel::Kind::Unorm;
-            b.shift = ch.shift;
+            b.high = ch.shift / 32;
+            b.shift = ch.shift % 32;
             b.mask = (1u << ch.bits) - 1u;
             b.max = static_cast<float>(b.mask);
             break;
         case layout::Type::Float:
-            if (ch.shift != 0 || ch.bits != 32) return std::nullopt;
+            if (ch.shift % 32 != 0 || ch.bits != 32) return std::nullopt;
             b.kind = BlockChannel::Kind::Float;
+            b.high = ch.shift / 32;
             break;
         default: return std::nullopt;
         }
@@ -647,7 +651,7 @@ bool block_supported(const Context& c, BlockLevels& levels) {
     if (!format) return false;
     levels.format = *format;
     levels.texel_bytes = c.bpp;
-    if (c.texture->levels() > BlockLevels::kMax || (c.bpp != 4 && c.bpp != 2 && c.bpp != 1)) return false;
+    if (c.texture->levels() > BlockLevels::kMax || (c.bpp != 8 && c.bpp != 4 && c.bpp != 2 && c.bpp != 1)) return false;
     if (!cpu_has_avx512()) return false;
     bool all_pow2 = true;
     const unsigned count = c.texture->levels();
@@ -689,7 +693,7 @@ bool block_supported(const Context& c, BlockLevels& levels) {
         levels.end[l] = levels.offsets32 ? levels.offset[l] + static_cast<int32_t>(size) : 0;
     }
     levels.context = c;
-    // Narrow texels and volume slices are read by 32-bit offsets only.
+    // Texels of other than 4 bytes and volume slices are read by 32-bit offsets only.
     if ((c.bpp != 4 || c.volume) && !levels.offsets32) return false;
     return block_address_supported(c.address[0], all_pow2) && block_address_supported(c.address[1], all_pow2) &&
            (!c.volume || block_address_supported(c.address[2], all_pow2));
@@ -820,18 +824,19 @@ SM2_AVX512 inline __m512i block_load_words(const BlockLevels& levels, __m512i at
 }
 
 // The four taps (x0, y0), (x1, y0), (x0, y1), (x1, y1) of one slice (`slice_start`: the byte
-// offset of the lane's slice from levels.anchor; 64-bit addresses: slice 0 of `base`).
+// offset of the lane's slice from levels.anchor; 64-bit addresses: slice 0 of `base`), as
+// t[tap][word]: word 1 is the second 32-bit word of 8-byte texels.
 struct BlockQuad {
-    __m512i t00, t10, t01, t11;
+    __m512i t[4][2];
 };
 SM2_AVX512 inline BlockQuad block_fetch(const BlockLevels& levels, const BlockTaps& tx, const BlockTaps& ty, __m512i row,
                                         __m512i slice_start, __m512i end, __m512i base_lo, __m512i base_hi) {
-    BlockQuad q;
+    BlockQuad q{};
     if (!levels.offsets32) {
-        q.t00 = block_gather(tx.i0, ty.i0, row, base_lo, base_hi);
-        q.t10 = block_gather(tx.i1, ty.i0, row, base_lo, base_hi);
-        q.t01 = block_gather(tx.i0, ty.i1, row, base_lo, base_hi);
-        q.t11 = block_gather(tx.i1, ty.i1, row, base_lo, base_hi);
+        q.t[0][0] = block_gather(tx.i0, ty.i0, row, base_lo, base_hi);
+        q.t[1][0] = block_gather(tx.i1, ty.i0, row, base_lo, base_hi);
+        q.t[2][0] = block_gather(tx.i0, ty.i1, row, base_lo, base_hi);
+        q.t[3][0] = block_gather(tx.i1, ty.i1, row, base_lo, base_hi);
         return q;
     }
     const __m512i row0 = _mm512_add_epi32(_mm512_mullo_epi32(ty.i0, row), slice_start);
@@ -842,14 +847,23 @@ SM2_AVX512 inline BlockQuad block_fetch(const BlockLevels& levels, const BlockTa
     const auto edge = static_cast<__mmask16>(~adjacent);
     if (levels.texel_bytes == 4) {
         const __m512i x0 = _mm512_slli_epi32(tx.i0, 2), x1 = _mm512_slli_epi32(tx.i1, 2);
-        block_gather_pairs(_mm512_add_epi32(row0, x0), adjacent, levels.anchor, q.t00, q.t10);
-        block_gather_pairs(_mm512_add_epi32(row1, x0), adjacent, levels.anchor, q.t01, q.t11);
+        block_gather_pairs(_mm512_add_epi32(row0, x0), adjacent, levels.anchor, q.t[0][0], q.t[1][0]);
+        block_gather_pairs(_mm512_add_epi32(row1, x0), adjacent, levels.anchor, q.t[2][0], q.t[3][0]);
         if (edge) {
-            q.t00 = _mm512_mask_i32gather_epi32(q.t00, edge, _mm512_add_epi32(row0, x0), levels.anchor, 1);
-            q.t10 = _mm512_mask_i32gather_epi32(q.t10, edge, _mm512_add_epi32(row0, x1), levels.anchor, 1);
-            q.t01 = _mm512_mask_i32gather_epi32(q.t01, edge, _mm512_add_epi32(row1, x0), levels.anchor, 1);
-            q.t11 = _mm512_mask_i32gather_epi32(q.t11, edge, _mm512_add_epi32(row1, x1), levels.anchor, 1);
+            q.t[0][0] = _mm512_mask_i32gather_epi32(q.t[0][0], edge, _mm512_add_epi32(row0, x0), levels.anchor, 1);
+            q.t[1][0] = _mm512_mask_i32gather_epi32(q.t[1][0], edge, _mm512_add_epi32(row0, x1), levels.anchor, 1);
+            q.t[2][0] = _mm512_mask_i32gather_epi32(q.t[2][0], edge, _mm512_add_epi32(row1, x0), levels.anchor, 1);
+            q.t[3][0] = _mm512_mask_i32gather_epi32(q.t[3][0], edge, _mm512_add_epi32(row1, x1), levels.anchor, 1);
         }
+        return q;
+    }
+    if (levels.texel_bytes == 8) {
+        // Each texel's two words by one 64-bit load.
+        const __m512i x0 = _mm512_slli_epi32(tx.i0, 3), x1 = _mm512_slli_epi32(tx.i1, 3);
+        block_gather_pairs(_mm512_add_epi32(row0, x0), 0xFFFF, levels.anchor, q.t[0][0], q.t[0][1]);
+        block_gather_pairs(_mm512_add_epi32(row0, x1), 0xFFFF, levels.anchor, q.t[1][0], q.t[1][1]);
+        block_gather_pairs(_mm512_add_epi32(row1, x0), 0xFFFF, levels.anchor, q.t[2][0], q.t[2][1]);
+        block_gather_pairs(_mm512_add_epi32(row1, x1), 0xFFFF, levels.anchor, q.t[3][0], q.t[3][1]);
         return q;
     }
     // Narrow texels (1 or 2 bytes): one 32-bit word holds a texel and, for adjacent lanes, the
@@ -857,13 +871,13 @@ SM2_AVX512 inline BlockQuad block_fetch(const BlockLevels& levels, const BlockTa
     const auto shift = static_cast<unsigned>(levels.texel_bytes == 2 ? 1 : 0);
     const __m512i x0 = _mm512_slli_epi32(tx.i0, shift), x1 = _mm512_slli_epi32(tx.i1, shift);
     const __m512i next = _mm512_set1_epi32(static_cast<int32_t>(8 * levels.texel_bytes));
-    q.t00 = block_load_words(levels, _mm512_add_epi32(row0, x0), end, 0xFFFF);
-    q.t01 = block_load_words(levels, _mm512_add_epi32(row1, x0), end, 0xFFFF);
-    q.t10 = _mm512_srlv_epi32(q.t00, next);
-    q.t11 = _mm512_srlv_epi32(q.t01, next);
+    q.t[0][0] = block_load_words(levels, _mm512_add_epi32(row0, x0), end, 0xFFFF);
+    q.t[2][0] = block_load_words(levels, _mm512_add_epi32(row1, x0), end, 0xFFFF);
+    q.t[1][0] = _mm512_srlv_epi32(q.t[0][0], next);
+    q.t[3][0] = _mm512_srlv_epi32(q.t[2][0], next);
     if (edge) {
-        q.t10 = _mm512_mask_mov_epi32(q.t10, edge, block_load_words(levels, _mm512_add_epi32(row0, x1), end, edge));
-        q.t11 = _mm512_mask_mov_epi32(q.t11, edge, block_load_words(levels, _mm512_add_epi32(row1, x1), end, edge));
+        q.t[1][0] = _mm512_mask_mov_epi32(q.t[1][0], edge, block_load_words(levels, _mm512_add_epi32(row0, x1), end, edge));
+        q.t[3][0] = _mm512_mask_mov_epi32(q.t[3][0], edge, block_load_words(levels, _mm512_add_epi32(row1, x1), end, edge));
     }
     return q;
 }
@@ -905,11 +919,11 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
             const __m512 w00 = _mm512_mul_ps(_mm512_mul_ps(bx, by), wz), w10 = _mm512_mul_ps(_mm512_mul_ps(tx.a, by), wz);
             const __m512 w01 = _mm512_mul_ps(_mm512_mul_ps(bx, ty.a), wz), w11 = _mm512_mul_ps(_mm512_mul_ps(tx.a, ty.a), wz);
             for (unsigned k = 0; k < 4; ++k) {
-                const __m512 c00 = block_tap(c, q.t00, format[k], k, o00);
+                const __m512 c00 = block_tap(c, q.t[0][format[k].high], format[k], k, o00);
                 if (p == 0) point[k] = c00;
-                __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_tap(c, q.t10, format[k], k, o10), w10));
-                r = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, q.t01, format[k], k, o01), w01));
-                sum[p][k] = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, q.t11, format[k], k, o11), w11));
+                __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_tap(c, q.t[1][format[k].high], format[k], k, o10), w10));
+                r = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, q.t[2][format[k].high], format[k], k, o01), w01));
+                sum[p][k] = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, q.t[3][format[k].high], format[k], k, o11), w11));
             }
         }
         for (unsigned k = 0; k < 4; ++k) out[k] = _mm512_mask_mov_ps(point[k], linear, _mm512_add_ps(sum[0][k], sum[1][k]));
@@ -934,8 +948,8 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
         const bool exact = c.fixed && ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 0xFFu;
         __m512 exact_sum = _mm512_setzero_ps();
         if (exact) {
-            const __m512 top = _mm512_fmadd_ps(block_field(q.t10, ch), ax, _mm512_mul_ps(block_field(q.t00, ch), bxi));
-            const __m512 bottom = _mm512_fmadd_ps(block_field(q.t11, ch), ax, _mm512_mul_ps(block_field(q.t01, ch), bxi));
+            const __m512 top = _mm512_fmadd_ps(block_field(q.t[1][ch.high], ch), ax, _mm512_mul_ps(block_field(q.t[0][ch.high], ch), bxi));
+            const __m512 bottom = _mm512_fmadd_ps(block_field(q.t[3][ch.high], ch), ax, _mm512_mul_ps(block_field(q.t[2][ch.high], ch), bxi));
             const __m512 sum = _mm512_fmadd_ps(bottom, ay, _mm512_mul_ps(top, byi));
             exact_sum = _mm512_mul_ps(unorm8::quotient(sum, ch.max), _mm512_set1_ps(1.0f / 65536.0f));
             if (!bordered) {
@@ -943,10 +957,10 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
                 continue;
             }
         }
-        const __m512 c00 = block_tap(c, q.t00, ch, k, o00);
-        __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_tap(c, q.t10, ch, k, o10), w10));
-        r = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, q.t01, ch, k, o01), w01));
-        r = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, q.t11, ch, k, o11), w11));
+        const __m512 c00 = block_tap(c, q.t[0][ch.high], ch, k, o00);
+        __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_tap(c, q.t[1][ch.high], ch, k, o10), w10));
+        r = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, q.t[2][ch.high], ch, k, o01), w01));
+        r = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, q.t[3][ch.high], ch, k, o11), w11));
         // POINT lanes read their texel as it is (filter_level() fetches it): the weighted sum
         // equals it for finite non-negative values, not for a float texel beside an infinity.
         r = _mm512_mask_mov_ps(c00, linear, r);

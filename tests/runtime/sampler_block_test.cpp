@@ -97,13 +97,13 @@ emu::TextureRequest random_request(std::mt19937& rng, std::array<emu::FloatLanes
 
 TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
     std::mt19937 rng(20261124);
-    // 4-byte, 2-byte and 1-byte texels; a third of the textures are volumes.
+    // 8-, 4-, 2- and 1-byte texels; a third of the textures are volumes.
     const Format formats[] = {Format::A8R8G8B8,  Format::X8R8G8B8, Format::A8B8G8R8,  Format::R5G6B5,
                               Format::X8B8G8R8,  Format::A2B10G10R10, Format::A2R10G10B10, Format::G16R16,
                               Format::R32F,      Format::A4R4G4B4, Format::A1R5G5B5,  Format::L8,
                               Format::A8L8,      Format::A8,       Format::L16,       Format::R3G3B2,
-                              Format::A8R3G3B2};
-    unsigned block_requests = 0, total = 0, volume_block_requests = 0, narrow_block_requests = 0;
+                              Format::A8R3G3B2,  Format::A16B16G16R16, Format::G32R32F};
+    unsigned block_requests = 0, total = 0, volume_block_requests = 0, narrow_block_requests = 0, wide_block_requests = 0;
     for (unsigned round = 0; round < 450; ++round) {
         const Format format = formats[rng() % std::size(formats)];
         const bool pow2 = rng() % 4 != 0;
@@ -112,7 +112,7 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
         const uint32_t w = pow2 ? 1u << (rng() % side) : 1 + rng() % odd, h = pow2 ? 1u << (rng() % side) : 1 + rng() % odd;
         const uint32_t d = !volume ? 0 : pow2 ? 1u << (rng() % 5) : 1 + rng() % 9;
         const Texture texture = random_texture(rng, format, w, h, pow2 ? 0 : 1, d);
-        const bool narrow = format_info(format)->bytes < 4;
+        const bool narrow = format_info(format)->bytes < 4, wide = format_info(format)->bytes == 8;
         TextureSampler block, lanes;
         block.set_texture(0, &texture);
         lanes.set_texture(0, &texture);
@@ -137,6 +137,7 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
                 block_requests += applies ? 1 : 0;
                 volume_block_requests += applies && volume ? 1 : 0;
                 narrow_block_requests += applies && narrow ? 1 : 0;
+                wide_block_requests += applies && wide ? 1 : 0;
                 // (R32F's random texels include NaNs; which NaN a sum of two gives depends on the
                 // operand order a compiler picks, and the engine stores every NaN as one pattern.)
                 for (unsigned c = 0; c < 4; ++c)
@@ -155,6 +156,7 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
         EXPECT_GT(block_requests, total / 5);
         EXPECT_GT(volume_block_requests, total / 20);
         EXPECT_GT(narrow_block_requests, total / 10);
+        EXPECT_GT(wide_block_requests, total / 40);
     }
 }
 
