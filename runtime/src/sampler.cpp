@@ -198,11 +198,11 @@ struct TextureSampler::BlockLevels {
     alignas(64) std::array<const std::byte*, kMax> base{};
     // Where every level lies within 2^31 bytes of `anchor`: each level's start as a 32-bit
     // offset from it, so a gather takes 16 32-bit offsets instead of two halves of 64-bit
-    // addresses (offsets32 false: the 64-bit gathers), and where its bytes end.
-    alignas(64) std::array<int32_t, kMax> offset{}, end{};
+    // addresses (offsets32 false: the 64-bit gathers). size: each level's bytes.
+    alignas(64) std::array<int32_t, kMax> offset{}, size{};
     const std::byte* anchor = nullptr;
     bool offsets32 = false;
-    unsigned texel_bytes = 4;  // 1, 2 (narrow texels), 4 or 8 (two words); all but 4: offsets32 only
+    unsigned texel_bytes = 4;  // 1, 2 (narrow texels), 4 or 8 (two words)
     Context context;
     BlockFormat format;  // how texels decode (looked up once per prepare(), not per lookup)
 };
@@ -658,7 +658,7 @@ bool block_supported(const Context& c, BlockLevels& levels) {
     for (unsigned l = 0; l < count; ++l) {
         const Surface& s = c.texture->surface(l);
         if (s.width() > (1u << 24) || s.height() > (1u << 24) || s.depth() > (1u << 24) ||
-            s.bytes().size() > (size_t{1} << 31) || s.slice_pitch() > (size_t{1} << 31))
+            s.bytes().size() >= (size_t{1} << 31))
             return false;
         levels.width[l] = static_cast<int32_t>(s.width());
         levels.height[l] = static_cast<int32_t>(s.height());
@@ -688,13 +688,10 @@ bool block_supported(const Context& c, BlockLevels& levels) {
     levels.offsets32 = high - low < (uintptr_t{1} << 31);
     levels.anchor = reinterpret_cast<const std::byte*>(low);
     for (unsigned l = 0; l < BlockLevels::kMax; ++l) {
-        const size_t size = c.texture->surface(std::min(l, count - 1)).bytes().size();
         levels.offset[l] = levels.offsets32 ? static_cast<int32_t>(reinterpret_cast<uintptr_t>(levels.base[l]) - low) : 0;
-        levels.end[l] = levels.offsets32 ? levels.offset[l] + static_cast<int32_t>(size) : 0;
+        levels.size[l] = static_cast<int32_t>(c.texture->surface(std::min(l, count - 1)).bytes().size());
     }
     levels.context = c;
-    // Texels of other than 4 bytes and volume slices are read by 32-bit offsets only.
-    if ((c.bpp != 4 || c.volume) && !levels.offsets32) return false;
     return block_address_supported(c.address[0], all_pow2) && block_address_supported(c.address[1], all_pow2) &&
            (!c.volume || block_address_supported(c.address[2], all_pow2));
 }
@@ -753,31 +750,6 @@ SM2_AVX512 inline BlockTaps block_taps(const Context& c, __m512 coord, __m512i n
     return {block_address(mode, i, n), block_address(mode, next, n), a, block_outside(mode, i, n), block_outside(mode, next, n)};
 }
 
-// The texel at each lane's byte offset and the one after it, as two 32-bit words per lane, for
-// the lanes of `pairs` (others read 0): 8-byte loads, which stay inside the level's row because
-// a pair lane's second texel is in the level.
-SM2_AVX512 inline void block_gather_pairs(__m512i offset, __mmask16 pairs, const std::byte* anchor, __m512i& first,
-                                          __m512i& second) {
-    const __m512i zero = _mm512_setzero_si512();
-    const __m512i lo = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(pairs), _mm512_castsi512_si256(offset), anchor, 1);
-    const __m512i hi = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(pairs >> 8),
-                                                   _mm512_extracti64x4_epi64(offset, 1), anchor, 1);
-    const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
-    const __m512i odd = _mm512_add_epi32(even, _mm512_set1_epi32(1));
-    first = _mm512_permutex2var_epi32(lo, even, hi);
-    second = _mm512_permutex2var_epi32(lo, odd, hi);
-}
-
-
-SM2_AVX512 inline __m512i block_gather(__m512i x, __m512i y, __m512i row, __m512i base_lo, __m512i base_hi) {
-    const __m512i offset = _mm512_add_epi32(_mm512_mullo_epi32(y, row), _mm512_slli_epi32(x, 2));
-    const __m512i lo = _mm512_add_epi64(base_lo, _mm512_cvtepi32_epi64(_mm512_castsi512_si256(offset)));
-    const __m512i hi = _mm512_add_epi64(base_hi, _mm512_cvtepi32_epi64(_mm512_extracti64x4_epi64(offset, 1)));
-    const __m256i texels_lo = _mm512_i64gather_epi32(lo, nullptr, 1);
-    const __m256i texels_hi = _mm512_i64gather_epi32(hi, nullptr, 1);
-    return _mm512_inserti64x4(_mm512_castsi256_si512(texels_lo), texels_hi, 1);
-}
-
 // The integer value of UNORM channel `ch` of 16 texels, as floats.
 SM2_AVX512 inline __m512 block_field(__m512i texels, const BlockChannel& ch) {
     return _mm512_cvtepi32_ps(_mm512_and_si512(_mm512_srli_epi32(texels, ch.shift), _mm512_set1_epi32(static_cast<int32_t>(ch.mask))));
@@ -801,69 +773,105 @@ SM2_AVX512 inline __m512 block_tap(const Context& c, __m512i texels, const Block
     return outside ? _mm512_mask_mov_ps(value, outside, _mm512_set1_ps(c.border[k])) : value;
 }
 
-// 32-bit words at the byte offsets `at` (from levels.anchor) of the lanes in `lanes` (others 0):
-// a narrow texel in the low bits of its word. A word would reach up to 3 bytes past a narrow
-// texel, so a lane whose load would pass its level's end (`end`) reads the bytes up to it.
-SM2_AVX512 inline __m512i block_load_words(const BlockLevels& levels, __m512i at, __m512i end, __mmask16 lanes) {
-    const __mmask16 inside = _mm512_mask_cmple_epi32_mask(lanes, _mm512_add_epi32(at, _mm512_set1_epi32(4)), end);
-    __m512i words = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), inside, at, levels.anchor, 1);
+// Where the lanes' texels are: a byte offset in each lane's level (`in_level`) from the level's
+// start, which is `start` bytes past levels.anchor (offsets32) or at the address base_lo/base_hi
+// (lanes 0-7, 8-15; 64-bit gathers otherwise).
+struct BlockAddress {
+    __m512i start, base_lo, base_hi, size;  // size: the lane's level's bytes
+};
+
+// 32-bit words at `in_level` for the lanes in `lanes` (others 0); each read must lie in the level.
+SM2_AVX512 __attribute__((always_inline)) inline __m512i block_words(const BlockLevels& levels, const BlockAddress& a, __m512i in_level, __mmask16 lanes) {
+    if (levels.offsets32)
+        return _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, _mm512_add_epi32(a.start, in_level), levels.anchor, 1);
+    const __m512i lo = _mm512_add_epi64(a.base_lo, _mm512_cvtepi32_epi64(_mm512_castsi512_si256(in_level)));
+    const __m512i hi = _mm512_add_epi64(a.base_hi, _mm512_cvtepi32_epi64(_mm512_extracti64x4_epi64(in_level, 1)));
+    const __m256i words_lo = _mm512_mask_i64gather_epi32(_mm256_setzero_si256(), static_cast<__mmask8>(lanes), lo, nullptr, 1);
+    const __m256i words_hi = _mm512_mask_i64gather_epi32(_mm256_setzero_si256(), static_cast<__mmask8>(lanes >> 8), hi, nullptr, 1);
+    return _mm512_inserti64x4(_mm512_castsi256_si512(words_lo), words_hi, 1);
+}
+
+// The 8 bytes at `in_level` of the lanes in `lanes` (others 0) as their low and high words;
+// each read must lie in the level.
+SM2_AVX512 __attribute__((always_inline)) inline void block_pairs(const BlockLevels& levels, const BlockAddress& a, __m512i in_level, __mmask16 lanes,
+                                   __m512i& first, __m512i& second) {
+    const __m512i zero = _mm512_setzero_si512();
+    __m512i lo, hi;
+    if (levels.offsets32) {
+        const __m512i at = _mm512_add_epi32(a.start, in_level);
+        lo = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(lanes), _mm512_castsi512_si256(at), levels.anchor, 1);
+        hi = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(lanes >> 8), _mm512_extracti64x4_epi64(at, 1), levels.anchor, 1);
+    } else {
+        const __m512i at_lo = _mm512_add_epi64(a.base_lo, _mm512_cvtepi32_epi64(_mm512_castsi512_si256(in_level)));
+        const __m512i at_hi = _mm512_add_epi64(a.base_hi, _mm512_cvtepi32_epi64(_mm512_extracti64x4_epi64(in_level, 1)));
+        lo = _mm512_mask_i64gather_epi64(zero, static_cast<__mmask8>(lanes), at_lo, nullptr, 1);
+        hi = _mm512_mask_i64gather_epi64(zero, static_cast<__mmask8>(lanes >> 8), at_hi, nullptr, 1);
+    }
+    const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    const __m512i odd = _mm512_add_epi32(even, _mm512_set1_epi32(1));
+    first = _mm512_permutex2var_epi32(lo, even, hi);
+    second = _mm512_permutex2var_epi32(lo, odd, hi);
+}
+
+// block_words() for narrow texels: a word would reach up to 3 bytes past a narrow texel, so a
+// lane whose word would pass its level's end reads the bytes up to it (the rest 0).
+SM2_AVX512 inline __m512i block_narrow_words(const BlockLevels& levels, const BlockAddress& a, __m512i in_level,
+                                             __mmask16 lanes) {
+    const __mmask16 inside = _mm512_mask_cmple_epi32_mask(lanes, _mm512_add_epi32(in_level, _mm512_set1_epi32(4)), a.size);
+    __m512i words = block_words(levels, a, in_level, inside);
     if (const auto last = static_cast<__mmask16>(lanes & ~inside)) {
-        alignas(64) std::array<int32_t, emu::kBatchLanes> offset, stop;
+        alignas(64) std::array<int32_t, emu::kBatchLanes> offset, size;
         alignas(64) std::array<uint32_t, emu::kBatchLanes> word;
-        _mm512_store_si512(offset.data(), at);
-        _mm512_store_si512(stop.data(), end);
+        alignas(64) std::array<const std::byte*, emu::kBatchLanes> base;
+        _mm512_store_si512(offset.data(), in_level);
+        _mm512_store_si512(size.data(), a.size);
         _mm512_store_si512(word.data(), words);
+        _mm512_store_si512(base.data(), a.base_lo);
+        _mm512_store_si512(base.data() + 8, a.base_hi);
         for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
             if (!(last >> l & 1u)) continue;
             word[l] = 0;
-            std::memcpy(&word[l], levels.anchor + offset[l], static_cast<size_t>(stop[l] - offset[l]));
+            std::memcpy(&word[l], base[l] + offset[l], static_cast<size_t>(size[l] - offset[l]));
         }
         words = _mm512_load_si512(word.data());
     }
     return words;
 }
 
-// The four taps (x0, y0), (x1, y0), (x0, y1), (x1, y1) of one slice (`slice_start`: the byte
-// offset of the lane's slice from levels.anchor; 64-bit addresses: slice 0 of `base`), as
-// t[tap][word]: word 1 is the second 32-bit word of 8-byte texels.
+// The four taps (x0, y0), (x1, y0), (x0, y1), (x1, y1) of one slice (`slice`: the byte offset
+// of the lanes' slice in their level), as t[tap][word]: word 1 is the second 32-bit word of
+// 8-byte texels.
 struct BlockQuad {
     __m512i t[4][2];
 };
-SM2_AVX512 inline BlockQuad block_fetch(const BlockLevels& levels, const BlockTaps& tx, const BlockTaps& ty, __m512i row,
-                                        __m512i slice_start, __m512i end, __m512i base_lo, __m512i base_hi) {
+SM2_AVX512 __attribute__((always_inline)) inline BlockQuad block_fetch(const BlockLevels& levels, const BlockAddress& a, const BlockTaps& tx,
+                                        const BlockTaps& ty, __m512i row, __m512i slice) {
     BlockQuad q{};
-    if (!levels.offsets32) {
-        q.t[0][0] = block_gather(tx.i0, ty.i0, row, base_lo, base_hi);
-        q.t[1][0] = block_gather(tx.i1, ty.i0, row, base_lo, base_hi);
-        q.t[2][0] = block_gather(tx.i0, ty.i1, row, base_lo, base_hi);
-        q.t[3][0] = block_gather(tx.i1, ty.i1, row, base_lo, base_hi);
-        return q;
-    }
-    const __m512i row0 = _mm512_add_epi32(_mm512_mullo_epi32(ty.i0, row), slice_start);
-    const __m512i row1 = _mm512_add_epi32(_mm512_mullo_epi32(ty.i1, row), slice_start);
+    const __m512i row0 = _mm512_add_epi32(_mm512_mullo_epi32(ty.i0, row), slice);
+    const __m512i row1 = _mm512_add_epi32(_mm512_mullo_epi32(ty.i1, row), slice);
     // Where i1 = i0 + 1 (every lane but those on a level's right edge) one load reads both
     // texels of a row: half the gathered elements. Edge lanes read each texel alone.
     const __mmask16 adjacent = _mm512_cmpeq_epi32_mask(tx.i1, _mm512_add_epi32(tx.i0, _mm512_set1_epi32(1)));
     const auto edge = static_cast<__mmask16>(~adjacent);
     if (levels.texel_bytes == 4) {
         const __m512i x0 = _mm512_slli_epi32(tx.i0, 2), x1 = _mm512_slli_epi32(tx.i1, 2);
-        block_gather_pairs(_mm512_add_epi32(row0, x0), adjacent, levels.anchor, q.t[0][0], q.t[1][0]);
-        block_gather_pairs(_mm512_add_epi32(row1, x0), adjacent, levels.anchor, q.t[2][0], q.t[3][0]);
+        block_pairs(levels, a, _mm512_add_epi32(row0, x0), adjacent, q.t[0][0], q.t[1][0]);
+        block_pairs(levels, a, _mm512_add_epi32(row1, x0), adjacent, q.t[2][0], q.t[3][0]);
         if (edge) {
-            q.t[0][0] = _mm512_mask_i32gather_epi32(q.t[0][0], edge, _mm512_add_epi32(row0, x0), levels.anchor, 1);
-            q.t[1][0] = _mm512_mask_i32gather_epi32(q.t[1][0], edge, _mm512_add_epi32(row0, x1), levels.anchor, 1);
-            q.t[2][0] = _mm512_mask_i32gather_epi32(q.t[2][0], edge, _mm512_add_epi32(row1, x0), levels.anchor, 1);
-            q.t[3][0] = _mm512_mask_i32gather_epi32(q.t[3][0], edge, _mm512_add_epi32(row1, x1), levels.anchor, 1);
+            q.t[0][0] = _mm512_mask_mov_epi32(q.t[0][0], edge, block_words(levels, a, _mm512_add_epi32(row0, x0), edge));
+            q.t[1][0] = _mm512_mask_mov_epi32(q.t[1][0], edge, block_words(levels, a, _mm512_add_epi32(row0, x1), edge));
+            q.t[2][0] = _mm512_mask_mov_epi32(q.t[2][0], edge, block_words(levels, a, _mm512_add_epi32(row1, x0), edge));
+            q.t[3][0] = _mm512_mask_mov_epi32(q.t[3][0], edge, block_words(levels, a, _mm512_add_epi32(row1, x1), edge));
         }
         return q;
     }
     if (levels.texel_bytes == 8) {
         // Each texel's two words by one 64-bit load.
         const __m512i x0 = _mm512_slli_epi32(tx.i0, 3), x1 = _mm512_slli_epi32(tx.i1, 3);
-        block_gather_pairs(_mm512_add_epi32(row0, x0), 0xFFFF, levels.anchor, q.t[0][0], q.t[0][1]);
-        block_gather_pairs(_mm512_add_epi32(row0, x1), 0xFFFF, levels.anchor, q.t[1][0], q.t[1][1]);
-        block_gather_pairs(_mm512_add_epi32(row1, x0), 0xFFFF, levels.anchor, q.t[2][0], q.t[2][1]);
-        block_gather_pairs(_mm512_add_epi32(row1, x1), 0xFFFF, levels.anchor, q.t[3][0], q.t[3][1]);
+        block_pairs(levels, a, _mm512_add_epi32(row0, x0), 0xFFFF, q.t[0][0], q.t[0][1]);
+        block_pairs(levels, a, _mm512_add_epi32(row0, x1), 0xFFFF, q.t[1][0], q.t[1][1]);
+        block_pairs(levels, a, _mm512_add_epi32(row1, x0), 0xFFFF, q.t[2][0], q.t[2][1]);
+        block_pairs(levels, a, _mm512_add_epi32(row1, x1), 0xFFFF, q.t[3][0], q.t[3][1]);
         return q;
     }
     // Narrow texels (1 or 2 bytes): one 32-bit word holds a texel and, for adjacent lanes, the
@@ -871,13 +879,13 @@ SM2_AVX512 inline BlockQuad block_fetch(const BlockLevels& levels, const BlockTa
     const auto shift = static_cast<unsigned>(levels.texel_bytes == 2 ? 1 : 0);
     const __m512i x0 = _mm512_slli_epi32(tx.i0, shift), x1 = _mm512_slli_epi32(tx.i1, shift);
     const __m512i next = _mm512_set1_epi32(static_cast<int32_t>(8 * levels.texel_bytes));
-    q.t[0][0] = block_load_words(levels, _mm512_add_epi32(row0, x0), end, 0xFFFF);
-    q.t[2][0] = block_load_words(levels, _mm512_add_epi32(row1, x0), end, 0xFFFF);
+    q.t[0][0] = block_narrow_words(levels, a, _mm512_add_epi32(row0, x0), 0xFFFF);
+    q.t[2][0] = block_narrow_words(levels, a, _mm512_add_epi32(row1, x0), 0xFFFF);
     q.t[1][0] = _mm512_srlv_epi32(q.t[0][0], next);
     q.t[3][0] = _mm512_srlv_epi32(q.t[2][0], next);
     if (edge) {
-        q.t[1][0] = _mm512_mask_mov_epi32(q.t[1][0], edge, block_load_words(levels, _mm512_add_epi32(row0, x1), end, edge));
-        q.t[3][0] = _mm512_mask_mov_epi32(q.t[3][0], edge, block_load_words(levels, _mm512_add_epi32(row1, x1), end, edge));
+        q.t[1][0] = _mm512_mask_mov_epi32(q.t[1][0], edge, block_narrow_words(levels, a, _mm512_add_epi32(row0, x1), edge));
+        q.t[3][0] = _mm512_mask_mov_epi32(q.t[3][0], edge, block_narrow_words(levels, a, _mm512_add_epi32(row1, x1), edge));
     }
     return q;
 }
@@ -894,8 +902,8 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
         _mm512_permutex2var_epi64(bases_lo, _mm512_cvtepi32_epi64(_mm512_castsi512_si256(level)), bases_hi);
     const __m512i base_hi =
         _mm512_permutex2var_epi64(bases_lo, _mm512_cvtepi32_epi64(_mm512_extracti64x4_epi64(level, 1)), bases_hi);
-    const __m512i start = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.offset.data()));
-    const __m512i end = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.end.data()));
+    const BlockAddress address{_mm512_permutexvar_epi32(level, _mm512_load_si512(levels.offset.data())), base_lo, base_hi,
+                               _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.size.data()))};
     const BlockTaps tx = block_taps(c, _mm512_load_ps(in.u.data()), w, c.address[0], linear);
     const BlockTaps ty = block_taps(c, _mm512_load_ps(in.v.data()), h, c.address[1], linear);
     const __m512 one = _mm512_set1_ps(1.0f);
@@ -914,8 +922,7 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
             const auto oz = static_cast<__mmask16>(p == 0 ? tz.outside0 : tz.outside1);
             const auto o00 = static_cast<__mmask16>(tx.outside0 | ty.outside0 | oz), o10 = static_cast<__mmask16>(tx.outside1 | ty.outside0 | oz);
             const auto o01 = static_cast<__mmask16>(tx.outside0 | ty.outside1 | oz), o11 = static_cast<__mmask16>(tx.outside1 | ty.outside1 | oz);
-            const BlockQuad q = block_fetch(levels, tx, ty, row, _mm512_add_epi32(start, _mm512_mullo_epi32(z, slice)), end,
-                                            base_lo, base_hi);
+            const BlockQuad q = block_fetch(levels, address, tx, ty, row, _mm512_mullo_epi32(z, slice));
             const __m512 w00 = _mm512_mul_ps(_mm512_mul_ps(bx, by), wz), w10 = _mm512_mul_ps(_mm512_mul_ps(tx.a, by), wz);
             const __m512 w01 = _mm512_mul_ps(_mm512_mul_ps(bx, ty.a), wz), w11 = _mm512_mul_ps(_mm512_mul_ps(tx.a, ty.a), wz);
             for (unsigned k = 0; k < 4; ++k) {
@@ -929,7 +936,7 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
         for (unsigned k = 0; k < 4; ++k) out[k] = _mm512_mask_mov_ps(point[k], linear, _mm512_add_ps(sum[0][k], sum[1][k]));
         return;
     }
-    const BlockQuad q = block_fetch(levels, tx, ty, row, start, end, base_lo, base_hi);
+    const BlockQuad q = block_fetch(levels, address, tx, ty, row, _mm512_setzero_si512());
     const __m512 w00 = _mm512_mul_ps(bx, by), w10 = _mm512_mul_ps(tx.a, by);
     const __m512 w01 = _mm512_mul_ps(bx, ty.a), w11 = _mm512_mul_ps(tx.a, ty.a);
     // exact_bilinear()'s integer sums for fixed8 weights on UNORM fields of at most 8 bits:
@@ -1234,6 +1241,7 @@ std::shared_ptr<const TextureSampler::BlockLevels> TextureSampler::block_levels_
     if (!block_enabled_ || s.texture == nullptr || s.texture->levels() == 0) return nullptr;
     auto levels = std::make_shared<BlockLevels>();
     if (!block_supported(make_context(*s.texture, s.state, precision_), *levels)) return nullptr;
+    if (block_64bit_addresses_) levels->offsets32 = false;
     return levels;
 }
 

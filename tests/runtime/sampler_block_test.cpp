@@ -113,8 +113,11 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
         const uint32_t d = !volume ? 0 : pow2 ? 1u << (rng() % 5) : 1 + rng() % 9;
         const Texture texture = random_texture(rng, format, w, h, pow2 ? 0 : 1, d);
         const bool narrow = format_info(format)->bytes < 4, wide = format_info(format)->bytes == 8;
+        // The block path with 32-bit offsets or with 64-bit addresses (which one a texture gets
+        // depends on where its levels were allocated), against the per-lane path.
         TextureSampler block, lanes;
         block.set_texture(0, &texture);
+        block.set_block_64bit_addresses(round % 2 == 1);
         lanes.set_texture(0, &texture);
         lanes.set_block_path(false);
         for (unsigned states = 0; states < 8; ++states) {

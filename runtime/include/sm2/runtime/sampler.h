@@ -78,10 +78,18 @@ public:
         precision_ = precision;
         forget_prepared();
     }
-    // The 16-lane AVX-512 path for the common 2D 8-bit RGBA lookups (on by default where the
-    // CPU has AVX-512); off, every lookup takes the per-lane path. Both give the same bits.
+    // The 16-lane AVX-512 path for 2D and volume lookups of the formats and states it covers
+    // (sampler.cpp, block_supported; on by default where the CPU has AVX-512); off, every lookup
+    // takes the per-lane path. Both give the same bits.
     void set_block_path(bool enabled) {
         block_enabled_ = enabled;
+        forget_prepared();
+    }
+    // The block path reads texels through 32-bit offsets when a texture's levels lie within 2^31
+    // bytes of each other, else through 64-bit addresses; true forces the 64-bit reads (tests:
+    // which one a texture gets depends on where the allocator put its levels).
+    void set_block_64bit_addresses(bool forced) {
+        block_64bit_addresses_ = forced;
         forget_prepared();
     }
     // Whether sample() takes the 16-lane path for this stage's texture and state.
@@ -133,6 +141,7 @@ private:
     std::array<Stage, kStages> stages_{};
     FilterPrecision precision_ = FilterPrecision::Fixed8;
     bool block_enabled_ = true;
+    bool block_64bit_addresses_ = false;
     // prepare()'s result per stage: whether it ran, and the tables (null: no block path).
     std::array<bool, kStages> prepared_{};
     std::array<std::shared_ptr<const BlockLevels>, kStages> block_levels_{};
