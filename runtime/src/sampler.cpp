@@ -747,12 +747,14 @@ SM2_AVX512 inline BlockTaps block_taps(const Context& c, __m512 coord, __m512i n
     index = _mm512_mask_mov_ps(_mm512_roundscale_ps(t, _MM_FROUND_TO_NEG_INF), linear, index);
     a = _mm512_maskz_mov_ps(linear, a);
     const __m512i i = _mm512_cvttps_epi32(index), next = _mm512_add_epi32(i, _mm512_set1_epi32(1));
-    return {block_address(mode, i, n), block_address(mode, next, n), a, block_outside(mode, i, n), block_outside(mode, next, n)};
+    return {block_address(mode, i, n), block_address(mode, next, n), a, block_outside(mode, i, n),
+            block_outside(mode, next, n)};
 }
 
 // The integer value of UNORM channel `ch` of 16 texels, as floats.
 SM2_AVX512 inline __m512 block_field(__m512i texels, const BlockChannel& ch) {
-    return _mm512_cvtepi32_ps(_mm512_and_si512(_mm512_srli_epi32(texels, ch.shift), _mm512_set1_epi32(static_cast<int32_t>(ch.mask))));
+    const __m512i mask = _mm512_set1_epi32(static_cast<int32_t>(ch.mask));
+    return _mm512_cvtepi32_ps(_mm512_and_si512(_mm512_srli_epi32(texels, ch.shift), mask));
 }
 
 // Channel `ch` of 16 texels, as format_layout.h decodes it.
@@ -768,7 +770,8 @@ SM2_AVX512 inline __m512 block_channel(__m512i texels, const BlockChannel& ch) {
 }
 
 // Channel k of 16 taps, BORDERCOLOR's channel k on the lanes of `outside`.
-SM2_AVX512 inline __m512 block_tap(const Context& c, __m512i texels, const BlockChannel& ch, unsigned k, __mmask16 outside) {
+SM2_AVX512 inline __m512 block_tap(const Context& c, __m512i texels, const BlockChannel& ch, unsigned k,
+                                   __mmask16 outside) {
     const __m512 value = block_channel(texels, ch);
     return outside ? _mm512_mask_mov_ps(value, outside, _mm512_set1_ps(c.border[k])) : value;
 }
@@ -781,26 +784,31 @@ struct BlockAddress {
 };
 
 // 32-bit words at `in_level` for the lanes in `lanes` (others 0); each read must lie in the level.
-SM2_AVX512 __attribute__((always_inline)) inline __m512i block_words(const BlockLevels& levels, const BlockAddress& a, __m512i in_level, __mmask16 lanes) {
+SM2_AVX512 __attribute__((always_inline)) inline __m512i block_words(const BlockLevels& levels, const BlockAddress& a,
+                                                                     __m512i in_level, __mmask16 lanes) {
+    const __m512i zero = _mm512_setzero_si512();
     if (levels.offsets32)
-        return _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, _mm512_add_epi32(a.start, in_level), levels.anchor, 1);
+        return _mm512_mask_i32gather_epi32(zero, lanes, _mm512_add_epi32(a.start, in_level), levels.anchor, 1);
     const __m512i lo = _mm512_add_epi64(a.base_lo, _mm512_cvtepi32_epi64(_mm512_castsi512_si256(in_level)));
     const __m512i hi = _mm512_add_epi64(a.base_hi, _mm512_cvtepi32_epi64(_mm512_extracti64x4_epi64(in_level, 1)));
-    const __m256i words_lo = _mm512_mask_i64gather_epi32(_mm256_setzero_si256(), static_cast<__mmask8>(lanes), lo, nullptr, 1);
-    const __m256i words_hi = _mm512_mask_i64gather_epi32(_mm256_setzero_si256(), static_cast<__mmask8>(lanes >> 8), hi, nullptr, 1);
+    const __m256i none = _mm256_setzero_si256();
+    const __m256i words_lo = _mm512_mask_i64gather_epi32(none, static_cast<__mmask8>(lanes), lo, nullptr, 1);
+    const __m256i words_hi = _mm512_mask_i64gather_epi32(none, static_cast<__mmask8>(lanes >> 8), hi, nullptr, 1);
     return _mm512_inserti64x4(_mm512_castsi256_si512(words_lo), words_hi, 1);
 }
 
 // The 8 bytes at `in_level` of the lanes in `lanes` (others 0) as their low and high words;
 // each read must lie in the level.
-SM2_AVX512 __attribute__((always_inline)) inline void block_pairs(const BlockLevels& levels, const BlockAddress& a, __m512i in_level, __mmask16 lanes,
-                                   __m512i& first, __m512i& second) {
+SM2_AVX512 __attribute__((always_inline)) inline void block_pairs(const BlockLevels& levels, const BlockAddress& a,
+                                                                  __m512i in_level, __mmask16 lanes, __m512i& first,
+                                                                  __m512i& second) {
     const __m512i zero = _mm512_setzero_si512();
     __m512i lo, hi;
     if (levels.offsets32) {
         const __m512i at = _mm512_add_epi32(a.start, in_level);
         lo = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(lanes), _mm512_castsi512_si256(at), levels.anchor, 1);
-        hi = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(lanes >> 8), _mm512_extracti64x4_epi64(at, 1), levels.anchor, 1);
+        hi = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(lanes >> 8), _mm512_extracti64x4_epi64(at, 1),
+                                         levels.anchor, 1);
     } else {
         const __m512i at_lo = _mm512_add_epi64(a.base_lo, _mm512_cvtepi32_epi64(_mm512_castsi512_si256(in_level)));
         const __m512i at_hi = _mm512_add_epi64(a.base_hi, _mm512_cvtepi32_epi64(_mm512_extracti64x4_epi64(in_level, 1)));
@@ -844,8 +852,9 @@ SM2_AVX512 inline __m512i block_narrow_words(const BlockLevels& levels, const Bl
 struct BlockQuad {
     __m512i t[4][2];
 };
-SM2_AVX512 __attribute__((always_inline)) inline BlockQuad block_fetch(const BlockLevels& levels, const BlockAddress& a, const BlockTaps& tx,
-                                        const BlockTaps& ty, __m512i row, __m512i slice) {
+SM2_AVX512 __attribute__((always_inline)) inline BlockQuad block_fetch(const BlockLevels& levels, const BlockAddress& a,
+                                                                       const BlockTaps& tx, const BlockTaps& ty,
+                                                                       __m512i row, __m512i slice) {
     BlockQuad q{};
     const __m512i row0 = _mm512_add_epi32(_mm512_mullo_epi32(ty.i0, row), slice);
     const __m512i row1 = _mm512_add_epi32(_mm512_mullo_epi32(ty.i1, row), slice);
