@@ -200,6 +200,10 @@ struct TextureSampler::BlockLevels {
     // offset from it, so a gather takes 16 32-bit offsets instead of two halves of 64-bit
     // addresses (offsets32 false: the 64-bit gathers). size: each level's bytes.
     alignas(64) std::array<int32_t, kMax> offset{}, size{};
+    // Cube maps: offset and base of face f's level l at f * kMax + l (the faces' levels measure
+    // the same, so the other tables hold face 0's).
+    alignas(64) std::array<int32_t, kMax * 6> face_offset{};
+    alignas(64) std::array<const std::byte*, kMax * 6> face_base{};
     const std::byte* anchor = nullptr;
     bool offsets32 = false;
     unsigned texel_bytes = 4;  // 1, 2 (narrow texels), 4 or 8 (two words)
@@ -601,7 +605,7 @@ Float4 lookup_any(const Context& c, float u, float v, float w, int face, const L
 // c.first at (0, 0)).
 struct BlockLanes {
     alignas(64) std::array<float, emu::kBatchLanes> u, v, w, frac;
-    alignas(64) std::array<int32_t, emu::kBatchLanes> l0, l1, linear;
+    alignas(64) std::array<int32_t, emu::kBatchLanes> l0, l1, linear, face;
 };
 
 using BlockLevels = TextureSampler::BlockLevels;
@@ -646,7 +650,7 @@ bool block_address_supported(TextureAddress mode, bool all_pow2) {
 
 // Whether the 16-lane path covers this context; fills the level tables.
 bool block_supported(const Context& c, BlockLevels& levels) {
-    if (c.cube || c.dxt || c.srgb || c.anisotropic) return false;
+    if (c.dxt || c.srgb || c.anisotropic) return false;
     const std::optional<BlockFormat> format = block_format(c.format);
     if (!format) return false;
     levels.format = *format;
@@ -677,19 +681,27 @@ bool block_supported(const Context& c, BlockLevels& levels) {
         levels.slice[l] = levels.slice[count - 1];
         levels.base[l] = levels.base[count - 1];
     }
-    // 32-bit offsets when every byte of every level lies within [anchor, anchor + 2^31).
+    // 32-bit offsets when every byte of every level (of every face) lies within [anchor, anchor + 2^31).
     uintptr_t low = UINTPTR_MAX, high = 0;
-    for (unsigned l = 0; l < count; ++l) {
-        const Surface& s = c.texture->surface(l);
-        const auto start = reinterpret_cast<uintptr_t>(s.bytes().data());
-        low = std::min(low, start);
-        high = std::max(high, start + s.bytes().size());
-    }
+    const unsigned faces = c.cube ? 6 : 1;
+    for (unsigned f = 0; f < faces; ++f)
+        for (unsigned l = 0; l < count; ++l) {
+            const Surface& s = c.texture->surface(l, f);
+            const auto start = reinterpret_cast<uintptr_t>(s.bytes().data());
+            low = std::min(low, start);
+            high = std::max(high, start + s.bytes().size());
+        }
     levels.offsets32 = high - low < (uintptr_t{1} << 31);
     levels.anchor = reinterpret_cast<const std::byte*>(low);
     for (unsigned l = 0; l < BlockLevels::kMax; ++l) {
         levels.offset[l] = levels.offsets32 ? static_cast<int32_t>(reinterpret_cast<uintptr_t>(levels.base[l]) - low) : 0;
         levels.size[l] = static_cast<int32_t>(c.texture->surface(std::min(l, count - 1)).bytes().size());
+        for (unsigned f = 0; f < faces; ++f) {
+            const std::byte* base = c.texture->surface(std::min(l, count - 1), f).bytes().data();
+            levels.face_base[f * BlockLevels::kMax + l] = base;
+            levels.face_offset[f * BlockLevels::kMax + l] =
+                levels.offsets32 ? static_cast<int32_t>(reinterpret_cast<uintptr_t>(base) - low) : 0;
+        }
     }
     levels.context = c;
     return block_address_supported(c.address[0], all_pow2) && block_address_supported(c.address[1], all_pow2) &&
@@ -911,8 +923,17 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
         _mm512_permutex2var_epi64(bases_lo, _mm512_cvtepi32_epi64(_mm512_castsi512_si256(level)), bases_hi);
     const __m512i base_hi =
         _mm512_permutex2var_epi64(bases_lo, _mm512_cvtepi32_epi64(_mm512_extracti64x4_epi64(level, 1)), bases_hi);
-    const BlockAddress address{_mm512_permutexvar_epi32(level, _mm512_load_si512(levels.offset.data())), base_lo, base_hi,
-                               _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.size.data()))};
+    BlockAddress address{_mm512_permutexvar_epi32(level, _mm512_load_si512(levels.offset.data())), base_lo, base_hi,
+                         _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.size.data()))};
+    if (c.cube) {
+        // Each lane's face's level: the tables at face * kMax + level.
+        const __m512i at = _mm512_add_epi32(_mm512_mullo_epi32(_mm512_load_si512(in.face.data()),
+                                                               _mm512_set1_epi32(static_cast<int32_t>(BlockLevels::kMax))),
+                                            level);
+        address.start = _mm512_i32gather_epi32(at, levels.face_offset.data(), 4);
+        address.base_lo = _mm512_i32gather_epi64(_mm512_castsi512_si256(at), levels.face_base.data(), 8);
+        address.base_hi = _mm512_i32gather_epi64(_mm512_extracti64x4_epi64(at, 1), levels.face_base.data(), 8);
+    }
     const BlockTaps tx = block_taps(c, _mm512_load_ps(in.u.data()), w, c.address[0], linear);
     const BlockTaps ty = block_taps(c, _mm512_load_ps(in.v.data()), h, c.address[1], linear);
     const __m512 one = _mm512_set1_ps(1.0f);
@@ -1005,6 +1026,63 @@ SM2_AVX512 void block_lookup(const Context& c, const BlockLevels& levels, const 
         _mm512_storeu_ps(texels[k].data(), _mm512_mask_mov_ps(_mm512_set1_ps(k == 3 ? 1.0f : 0.0f), used, r[k]));
 }
 
+// project_to_face() and cube_direction() for 16 lanes, each lane on its own face.
+struct BlockFace {
+    __m512 u, v;
+    __m512i face;
+};
+
+SM2_AVX512 inline BlockFace block_project(__m512 x, __m512 y, __m512 z, __m512i face) {
+    const __m512 sign = _mm512_set1_ps(-0.0f);
+    const __m512 nx = _mm512_xor_ps(x, sign), ny = _mm512_xor_ps(y, sign), nz = _mm512_xor_ps(z, sign);
+    const __mmask16 f0 = _mm512_cmpeq_epi32_mask(face, _mm512_set1_epi32(0));
+    const __mmask16 f1 = _mm512_cmpeq_epi32_mask(face, _mm512_set1_epi32(1));
+    const __mmask16 f2 = _mm512_cmpeq_epi32_mask(face, _mm512_set1_epi32(2));
+    const __mmask16 f3 = _mm512_cmpeq_epi32_mask(face, _mm512_set1_epi32(3));
+    const __mmask16 f4 = _mm512_cmpeq_epi32_mask(face, _mm512_set1_epi32(4));
+    // face: 0: (-z, -y, x), 1: (z, -y, x), 2: (x, z, y), 3: (x, -z, y), 4: (x, -y, z), 5: (-x, -y, z)
+    __m512 sc = _mm512_mask_mov_ps(nx, static_cast<__mmask16>(f2 | f3 | f4), x);
+    sc = _mm512_mask_mov_ps(_mm512_mask_mov_ps(sc, f0, nz), f1, z);
+    __m512 tc = _mm512_mask_mov_ps(_mm512_mask_mov_ps(ny, f2, z), f3, nz);
+    __m512 ma = _mm512_mask_mov_ps(z, static_cast<__mmask16>(f0 | f1), x);
+    ma = _mm512_mask_mov_ps(ma, static_cast<__mmask16>(f2 | f3), y);
+    const __m512 m = _mm512_abs_ps(ma);
+    const __mmask16 centre = _mm512_cmp_ps_mask(m, _mm512_setzero_ps(), _CMP_EQ_UQ);  // 0 or NaN
+    const __m512 one = _mm512_set1_ps(1.0f), half = _mm512_set1_ps(0.5f);
+    const __m512 u = _mm512_mul_ps(_mm512_add_ps(_mm512_div_ps(sc, m), one), half);
+    const __m512 v = _mm512_mul_ps(_mm512_add_ps(_mm512_div_ps(tc, m), one), half);
+    return {_mm512_mask_mov_ps(u, centre, half), _mm512_mask_mov_ps(v, centre, half), face};
+}
+
+SM2_AVX512 inline BlockFace block_cube_direction(__m512 x, __m512 y, __m512 z) {
+    // NaN components count as 0; with an infinite component only the infinite ones stay, as +-1.
+    x = _mm512_maskz_mov_ps(_mm512_cmp_ps_mask(x, x, _CMP_ORD_Q), x);
+    y = _mm512_maskz_mov_ps(_mm512_cmp_ps_mask(y, y, _CMP_ORD_Q), y);
+    z = _mm512_maskz_mov_ps(_mm512_cmp_ps_mask(z, z, _CMP_ORD_Q), z);
+    const __m512 inf = _mm512_set1_ps(INFINITY);
+    const __mmask16 ix = _mm512_cmp_ps_mask(_mm512_abs_ps(x), inf, _CMP_EQ_OQ);
+    const __mmask16 iy = _mm512_cmp_ps_mask(_mm512_abs_ps(y), inf, _CMP_EQ_OQ);
+    const __mmask16 iz = _mm512_cmp_ps_mask(_mm512_abs_ps(z), inf, _CMP_EQ_OQ);
+    const auto infinite = static_cast<__mmask16>(ix | iy | iz);
+    if (infinite) {
+        // +-1 with the infinity's sign, 0 for the finite components
+        const __m512 sign = _mm512_set1_ps(-0.0f), one = _mm512_set1_ps(1.0f);
+        x = _mm512_mask_mov_ps(x, infinite, _mm512_maskz_mov_ps(ix, _mm512_or_ps(_mm512_and_ps(x, sign), one)));
+        y = _mm512_mask_mov_ps(y, infinite, _mm512_maskz_mov_ps(iy, _mm512_or_ps(_mm512_and_ps(y, sign), one)));
+        z = _mm512_mask_mov_ps(z, infinite, _mm512_maskz_mov_ps(iz, _mm512_or_ps(_mm512_and_ps(z, sign), one)));
+    }
+    const __m512 ax = _mm512_abs_ps(x), ay = _mm512_abs_ps(y), az = _mm512_abs_ps(z);
+    // Ties: z over y over x; the sign bit chooses the negative face (-0 included).
+    const auto z_major = static_cast<__mmask16>(_mm512_cmp_ps_mask(az, ay, _CMP_GE_OQ) & _mm512_cmp_ps_mask(az, ax, _CMP_GE_OQ));
+    const auto y_major = static_cast<__mmask16>(~z_major & _mm512_cmp_ps_mask(ay, ax, _CMP_GE_OQ));
+    const __mmask16 nx = _mm512_movepi32_mask(_mm512_castps_si512(x)), ny = _mm512_movepi32_mask(_mm512_castps_si512(y));
+    const __mmask16 nz = _mm512_movepi32_mask(_mm512_castps_si512(z));
+    __m512i face = _mm512_mask_mov_epi32(_mm512_setzero_si512(), nx, _mm512_set1_epi32(1));
+    face = _mm512_mask_mov_epi32(face, y_major, _mm512_mask_mov_epi32(_mm512_set1_epi32(2), ny, _mm512_set1_epi32(3)));
+    face = _mm512_mask_mov_epi32(face, z_major, _mm512_mask_mov_epi32(_mm512_set1_epi32(4), nz, _mm512_set1_epi32(5)));
+    return block_project(x, y, z, face);
+}
+
 // block_sample()'s per-lane set-up in registers: each lane's (u, v) (and r for volumes), divided by w for texldp,
 // and the squared texel-space lengths of the 4 quads' coarse derivatives (TR - TL, BL - TL) as
 // to_texels() and length() compute them (float differences and products, then the sum of
@@ -1014,24 +1092,45 @@ SM2_AVX512 void block_coordinates(const Context& c, const emu::TextureRequest& r
                                   std::array<double, 8>& squares) {
     const auto& in = *request.coordinates;
     __m512 u = _mm512_loadu_ps(in[0].data()), v = _mm512_loadu_ps(in[1].data());
-    __m512 r = c.volume ? _mm512_loadu_ps(in[2].data()) : _mm512_setzero_ps();  // volumes' third coordinate
+    const bool third = c.volume || c.cube;
+    __m512 r = third ? _mm512_loadu_ps(in[2].data()) : _mm512_setzero_ps();  // volumes' and cubes' third coordinate
     if (request.variant == emu::TextureVariant::Projected) {
         const __m512 w = _mm512_loadu_ps(in[3].data());  // IEEE: w = 0 gives +-inf or NaN
         u = _mm512_div_ps(u, w);
         v = _mm512_div_ps(v, w);
-        if (c.volume) r = _mm512_div_ps(r, w);
+        if (third) r = _mm512_div_ps(r, w);
+    }
+    const __m512i to = _mm512_setr_epi32(1, 5, 9, 13, 2, 6, 10, 14, 0, 0, 0, 0, 0, 0, 0, 0);
+    const __m512i from = _mm512_setr_epi32(0, 4, 8, 12, 0, 4, 8, 12, 0, 0, 0, 0, 0, 0, 0, 0);
+    __m512 du, dv;
+    if (c.cube) {
+        // cube_direction() per lane; the derivatives from the quad's lanes projected onto its
+        // top-left lane's face (as sample() does, from the directions as given).
+        const BlockFace d = block_cube_direction(u, v, r);
+        const __m512i face = _mm512_permutexvar_epi32(from, d.face);
+        const BlockFace next = block_project(_mm512_permutexvar_ps(to, u), _mm512_permutexvar_ps(to, v),
+                                             _mm512_permutexvar_ps(to, r), face);
+        const BlockFace top_left = block_project(_mm512_permutexvar_ps(from, u), _mm512_permutexvar_ps(from, v),
+                                                 _mm512_permutexvar_ps(from, r), face);
+        du = _mm512_sub_ps(next.u, top_left.u);
+        dv = _mm512_sub_ps(next.v, top_left.v);
+        u = d.u;
+        v = d.v;
+        r = _mm512_setzero_ps();
+        _mm512_store_si512(lanes.face.data(), d.face);
+    } else {
+        du = _mm512_sub_ps(_mm512_permutexvar_ps(to, u), _mm512_permutexvar_ps(from, u));
+        dv = _mm512_sub_ps(_mm512_permutexvar_ps(to, v), _mm512_permutexvar_ps(from, v));
+        _mm512_store_si512(lanes.face.data(), _mm512_setzero_si512());
     }
     _mm512_store_ps(lanes.u.data(), u);
     _mm512_store_ps(lanes.v.data(), v);
     _mm512_store_ps(lanes.w.data(), r);
-    const __m512i to = _mm512_setr_epi32(1, 5, 9, 13, 2, 6, 10, 14, 0, 0, 0, 0, 0, 0, 0, 0);
-    const __m512i from = _mm512_setr_epi32(0, 4, 8, 12, 0, 4, 8, 12, 0, 0, 0, 0, 0, 0, 0, 0);
-    const __m512 du = _mm512_sub_ps(_mm512_permutexvar_ps(to, u), _mm512_permutexvar_ps(from, u));
-    const __m512 dv = _mm512_sub_ps(_mm512_permutexvar_ps(to, v), _mm512_permutexvar_ps(from, v));
     const __m512 tu = _mm512_mul_ps(du, _mm512_set1_ps(static_cast<float>(c.texture->width())));
     const __m512 tv = _mm512_mul_ps(dv, _mm512_set1_ps(static_cast<float>(c.texture->height())));
     const __m512 dr = _mm512_sub_ps(_mm512_permutexvar_ps(to, r), _mm512_permutexvar_ps(from, r));
-    const __m512 tr = c.volume ? _mm512_mul_ps(dr, _mm512_set1_ps(static_cast<float>(c.texture->depth()))) : _mm512_setzero_ps();
+    const __m512 tr =
+        c.volume ? _mm512_mul_ps(dr, _mm512_set1_ps(static_cast<float>(c.texture->depth()))) : _mm512_setzero_ps();
     const __m512d x = _mm512_cvtps_pd(_mm512_castps512_ps256(tu));
     const __m512d y = _mm512_cvtps_pd(_mm512_castps512_ps256(tv));
     const __m512d z = _mm512_cvtps_pd(_mm512_castps512_ps256(tr));
@@ -1067,6 +1166,7 @@ SM2_AVX512 void block_spread_choices(const std::array<int32_t, 4>& l0, const std
     _mm512_store_ps(lanes.u.data(), _mm512_mask_mov_ps(zero, used, _mm512_load_ps(lanes.u.data())));
     _mm512_store_ps(lanes.v.data(), _mm512_mask_mov_ps(zero, used, _mm512_load_ps(lanes.v.data())));
     _mm512_store_ps(lanes.w.data(), _mm512_mask_mov_ps(zero, used, _mm512_load_ps(lanes.w.data())));
+    _mm512_store_si512(lanes.face.data(), _mm512_maskz_mov_epi32(used, _mm512_load_si512(lanes.face.data())));
 }
 
 

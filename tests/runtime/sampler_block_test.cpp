@@ -19,12 +19,17 @@
 namespace sm2::runtime {
 namespace {
 
-Texture random_texture(std::mt19937& rng, Format format, uint32_t w, uint32_t h, uint32_t levels, uint32_t d = 0) {
-    Texture t = d == 0 ? Texture::create_2d(format, w, h, levels) : Texture::create_volume(format, w, h, d, levels);
-    for (uint32_t l = 0; l < t.levels(); ++l) {
-        auto& bytes = t.surface(l).bytes();
-        for (auto& b : bytes) b = static_cast<std::byte>(rng() & 0xFFu);
-    }
+// d = 0: a 2D texture; d > 0: a volume of depth d; cube: a cube map of side w.
+Texture random_texture(std::mt19937& rng, Format format, uint32_t w, uint32_t h, uint32_t levels, uint32_t d = 0,
+                       bool cube = false) {
+    Texture t = cube     ? Texture::create_cube(format, w, levels)
+                : d == 0 ? Texture::create_2d(format, w, h, levels)
+                         : Texture::create_volume(format, w, h, d, levels);
+    for (uint32_t f = 0; f < t.faces(); ++f)
+        for (uint32_t l = 0; l < t.levels(); ++l) {
+            auto& bytes = t.surface(l, f).bytes();
+            for (auto& b : bytes) b = static_cast<std::byte>(rng() & 0xFFu);
+        }
     return t;
 }
 
@@ -97,21 +102,23 @@ emu::TextureRequest random_request(std::mt19937& rng, std::array<emu::FloatLanes
 
 TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
     std::mt19937 rng(20261124);
-    // 8-, 4-, 2- and 1-byte texels; a third of the textures are volumes.
+    // 8-, 4-, 2- and 1-byte texels; a quarter of the textures are volumes, a quarter cube maps.
     const Format formats[] = {Format::A8R8G8B8,  Format::X8R8G8B8, Format::A8B8G8R8,  Format::R5G6B5,
                               Format::X8B8G8R8,  Format::A2B10G10R10, Format::A2R10G10B10, Format::G16R16,
                               Format::R32F,      Format::A4R4G4B4, Format::A1R5G5B5,  Format::L8,
                               Format::A8L8,      Format::A8,       Format::L16,       Format::R3G3B2,
                               Format::A8R3G3B2,  Format::A16B16G16R16, Format::G32R32F};
     unsigned block_requests = 0, total = 0, volume_block_requests = 0, narrow_block_requests = 0, wide_block_requests = 0;
+    unsigned cube_block_requests = 0;
     for (unsigned round = 0; round < 450; ++round) {
         const Format format = formats[rng() % std::size(formats)];
         const bool pow2 = rng() % 4 != 0;
-        const bool volume = rng() % 3 == 0;
+        const unsigned kind = rng() % 4;
+        const bool volume = kind == 0, cube = kind == 1;
         const uint32_t side = volume ? 6 : 8, odd = volume ? 20 : 70;
         const uint32_t w = pow2 ? 1u << (rng() % side) : 1 + rng() % odd, h = pow2 ? 1u << (rng() % side) : 1 + rng() % odd;
         const uint32_t d = !volume ? 0 : pow2 ? 1u << (rng() % 5) : 1 + rng() % 9;
-        const Texture texture = random_texture(rng, format, w, h, pow2 ? 0 : 1, d);
+        const Texture texture = random_texture(rng, format, w, h, pow2 ? 0 : 1, d, cube);
         const bool narrow = format_info(format)->bytes < 4, wide = format_info(format)->bytes == 8;
         // The block path with 32-bit offsets or with 64-bit addresses (which one a texture gets
         // depends on where its levels were allocated), against the per-lane path.
@@ -141,6 +148,7 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
                 volume_block_requests += applies && volume ? 1 : 0;
                 narrow_block_requests += applies && narrow ? 1 : 0;
                 wide_block_requests += applies && wide ? 1 : 0;
+                cube_block_requests += applies && cube ? 1 : 0;
                 // (R32F's random texels include NaNs; which NaN a sum of two gives depends on the
                 // operand order a compiler picks, and the engine stores every NaN as one pattern.)
                 for (unsigned c = 0; c < 4; ++c)
@@ -160,6 +168,7 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
         EXPECT_GT(volume_block_requests, total / 20);
         EXPECT_GT(narrow_block_requests, total / 10);
         EXPECT_GT(wide_block_requests, total / 40);
+        EXPECT_GT(cube_block_requests, total / 20);
     }
 }
 
