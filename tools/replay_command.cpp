@@ -18,6 +18,7 @@
 #include "sm2/runtime/stream_assembler.h"
 #include "stream_io.h"
 #include "sm2/emu/jit.h"
+#include "sm2/runtime/apitrace_import.h"
 #include "sm2/runtime/command_stream.h"
 #include "sm2/runtime/device.h"
 #include "sm2/runtime/replay.h"
@@ -158,10 +159,9 @@ std::vector<std::filesystem::path> old_frames(const std::string& folder) {
     return frames;
 }
 
-int run_replay(const ReplayCliOptions& o) {
-    if (!o.numeric.check("replay")) return kBadUsage;
-    auto loaded = load_stream(o.stream, "replay", o.numeric.read_root);
-    if (!loaded) return kInvalidInput;
+// The output folder, created, with no frames of an earlier replay left unless --overwrite
+// removes them; a status to exit with when it cannot be had.
+std::optional<int> prepare_output(const ReplayCliOptions& o) {
     // A folder with frames of an earlier replay would mix them with this one's.
     if (const auto frames = old_frames(o.output); !frames.empty()) {
         if (!o.overwrite) {
@@ -183,6 +183,52 @@ int run_replay(const ReplayCliOptions& o) {
                   << (ec ? ": " + ec.message() : std::string()) << '\n';
         return kInvalidInput;
     }
+    return std::nullopt;
+}
+
+// sm2 replay APP.trace: the apitrace capture imported and replayed one call at a time (no stream
+// is built); skipped and refused calls are reported once per kind with their first call number.
+int run_replay_trace(const ReplayCliOptions& o) {
+    namespace at = runtime::apitrace;
+    std::optional<at::Error> error;
+    auto reader = at::Reader::open_file(o.stream, error);
+    if (!reader) {
+        std::cerr << "sm2 replay: " << (error->io ? "" : display_name(o.stream) + ": ") << error->to_string() << '\n';
+        return kInvalidInput;
+    }
+    if (auto status = prepare_output(o)) return *status;
+    runtime::DeviceOptions device_options;
+    device_options.output_dir = o.output;
+    o.numeric.apply(device_options);
+    runtime::Device device(device_options);
+    runtime::ReplayOptions options;
+    options.file_name = display_name(o.stream);
+    options.assembler = runtime::stream_assembler();
+    const auto start = std::chrono::steady_clock::now();
+    const at::TraceReplay result = at::replay_trace(*reader, device, options);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const auto& s = device.statistics();
+    std::cout << device.frames_presented() << " frames, " << result.statements << " calls in " << fixed(seconds, 3)
+              << " s: " << s.draws << " draws, " << s.vertices_shaded << " vertices, " << s.primitives
+              << " primitives, " << s.pixels_shaded << " pixels shaded, " << s.pipelines_built << " pipelines built\n";
+    if (!o.quiet || result.import.skipped > 0)
+        std::cerr << "sm2 replay: " << display_name(o.stream) << ": " << result.import.to_string();
+    if (result.refused > 0)
+        std::cerr << "sm2 replay: " << result.refused << " of " << result.statements << " calls refused\n"
+                  << result.refusals_to_string();
+    if (result.error) {
+        std::cerr << "sm2 replay: " << display_name(o.stream) << ": " << result.error->to_string() << '\n';
+        return kInvalidInput;
+    }
+    return result.refused > 0 ? kInvalidInput : kOk;
+}
+
+int run_replay(const ReplayCliOptions& o) {
+    if (!o.numeric.check("replay")) return kBadUsage;
+    if (o.stream.ends_with(".trace")) return run_replay_trace(o);
+    auto loaded = load_stream(o.stream, "replay", o.numeric.read_root);
+    if (!loaded) return kInvalidInput;
+    if (auto status = prepare_output(o)) return *status;
     runtime::DeviceOptions device_options;
     device_options.output_dir = o.output;
     o.numeric.apply(device_options);
@@ -309,7 +355,9 @@ void add_replay_commands(CLI::App& app, int& status) {
     auto* replay = app.add_subcommand(
         "replay", "Replay a command stream: every Present writes DIR/frame_NNNN.png, SaveSurface writes relative "
                   "to DIR; refused calls are reported with file:line (exit 1) and the replay goes on");
-    replay->add_option("stream", r->stream, "Command stream, text (.sm2cs) or binary (.sm2cb); '-' for stdin")
+    replay->add_option("stream", r->stream,
+                       "Command stream, text (.sm2cs) or binary (.sm2cb), '-' for stdin; or an apitrace capture (.trace), "
+                       "imported as it replays")
         ->required();
     replay->add_option("-o,--output", r->output,
                        "Output folder (created if missing; refused if it holds frames of an earlier replay)")

@@ -24,6 +24,8 @@ struct Skip {
 
 constexpr uint32_t kLockReadOnly = 0x10;
 constexpr uint32_t kUsageRenderTarget = 0x1;
+constexpr uint32_t kUsageDynamic = 0x200;
+constexpr int64_t kPoolManaged = 1;
 
 struct Object {
     enum class Kind : uint8_t { Device, Shader, Declaration, VertexBuffer, IndexBuffer, Texture, CubeTexture,
@@ -45,6 +47,7 @@ struct Lock {
     int32_t face = -1;
     uint64_t pitch = 0, slice_pitch = 0;
     bool whole = true;         // textures: no sub-rectangle or box
+    int64_t left = 0, top = 0, right = 0, bottom = 0;  // LockRect's pRect when not whole
 };
 
 cs::Value ident(std::string_view text) {
@@ -94,10 +97,16 @@ std::string_view method_of(std::string_view name) {
 
 class Importer {
 public:
+    explicit Importer(const StatementSink* sink = nullptr) : sink_(sink) {}
+
     ImportResult run(Reader& reader) {
         while (auto call = reader.next()) {
             ++result_.report.calls;
             translate(*call);
+            if (sink_) {
+                for (const auto& statement : result_.stream.statements) (*sink_)(statement, call->number);
+                result_.stream.statements.clear();
+            }
         }
         result_.error = reader.error();
         return std::move(result_);
@@ -248,6 +257,10 @@ private:
             return true;
         }
         if (method == "GetSurfaceLevel" || method == "GetCubeMapSurface") return surface_level(c, method);
+        if (name.rfind("IDirect3DStateBlock9::", 0) == 0 && (method == "Capture" || method == "Apply")) {
+            emit(std::string(method), {ident(self(c).name)});
+            return true;
+        }
         if (method == "GenerateMipSubLevels") {
             emit("GenerateMipSubLevels", {ident(self(c).name)});
             return true;
@@ -273,24 +286,99 @@ private:
         return true;
     }
 
-    // An object an output argument names, once the statement that creates it is out.
-    Object& created(const Call& c, std::string_view out, Object::Kind kind, std::string_view prefix) {
-        return add(out_pointer(c, out), kind, prefix);
+
+    // A surface argument as the stream names it: its handle and, for a texture level, the level.
+    struct SurfaceRef {
+        std::string name;
+        uint32_t level = 0;
+    };
+    SurfaceRef surface_ref(const Call& c, std::string_view argument) const {
+        const uint64_t ptr = pointer(c, argument);
+        if (ptr == 0) throw Skip{"argument " + std::string(argument) + " is NULL"};
+        const Object& o = object(ptr, argument);
+        if (o.kind == Object::Kind::Surface && o.face >= 0) throw Skip{"a cube-map face surface"};
+        if (o.kind != Object::Kind::Surface && o.kind != Object::Kind::RenderTarget && o.kind != Object::Kind::ReadBack)
+            throw Skip{"argument " + std::string(argument) + " is not a surface"};
+        return {o.name, o.kind == Object::Kind::Surface ? o.level : 0};
+    }
+    // A RECT (left top right bottom) or D3DRECT (x1 y1 x2 y2) as a tuple.
+    static cs::Value rect(const Value& r) {
+        if (r.member("x1"))
+            return tuple({integer(member(r, "x1")), integer(member(r, "y1")), integer(member(r, "x2")), integer(member(r, "y2"))});
+        return tuple({integer(member(r, "left")), integer(member(r, "top")), integer(member(r, "right")), integer(member(r, "bottom"))});
+    }
+    static cs::Value optional_rect(const Call& c, std::string_view argument) {
+        if (arg(c, argument).kind == Value::Kind::Null) return ident("NULL");
+        return rect(deref(c, argument));
     }
 
     bool device(const Call& c, std::string_view m) {
-        // Between BeginStateBlock and EndStateBlock, Set* calls are recorded into the block, not
-        // applied: importing them as states would apply them now.
         if (m == "BeginStateBlock") {
-            recording_ = true;
-            return false;
+            emit("BeginStateBlock", {});
+            return true;
         }
-        if (m == "EndStateBlock") {
-            recording_ = false;
-            return false;
+        if (m == "EndStateBlock" || m == "CreateStateBlock") {
+            const uint64_t ptr = out_pointer(c, "ppSB");
+            std::vector<cs::Value> args{ident("sb_" + hex(ptr))};
+            if (m == "CreateStateBlock") {
+                const auto type = enum_name(EnumFamily::StateBlockType, u32(c, "Type"));
+                if (type.empty()) throw Skip{"an unknown state block type"};
+                args.push_back(ident(type));
+            }
+            emit(std::string(m), std::move(args));
+            add(ptr, Object::Kind::StateBlock, "sb");
+            return true;
         }
-        if (recording_ && (m.rfind("Set", 0) == 0 || m == "LightEnable" || m == "MultiplyTransform"))
-            throw Skip{"recorded into a state block (BeginStateBlock ... EndStateBlock), which the stream vocabulary lacks"};
+        if (m == "SetSoftwareVertexProcessing") {
+            emit("SetSoftwareVertexProcessing", {ident(u32(c, "bSoftware") ? "TRUE" : "FALSE")});
+            return true;
+        }
+        if (m == "SetGammaRamp") {
+            // D3DGAMMARAMP: WORD red[256], green[256], blue[256].
+            const Value& ramp = deref(c, "pRamp");
+            std::vector<std::byte> bytes;
+            for (const char* channel : {"red", "green", "blue"}) {
+                const Value* words = ramp.member(channel);
+                if (!words || words->kind != Value::Kind::Array || words->items.size() != 256)
+                    throw Skip{std::string("pRamp.") + channel + " is not 256 WORDs"};
+                for (const Value& w : words->items) {
+                    const auto v = w.as_int();
+                    if (!v || *v < 0 || *v > 0xFFFF) throw Skip{"a gamma ramp entry is not a WORD"};
+                    bytes.push_back(static_cast<std::byte>(*v & 0xFF));
+                    bytes.push_back(static_cast<std::byte>(*v >> 8));
+                }
+            }
+            emit("SetGammaRamp", {integer(u32(c, "iSwapChain")), blob(std::move(bytes), cs::BlobType::U16)});
+            return true;
+        }
+        if (m == "SetNPatchMode") {
+            emit("SetNPatchMode", {real(f32(arg(c, "nSegments"), "nSegments"))});
+            return true;
+        }
+        if (m == "ColorFill") {
+            const SurfaceRef s = surface_ref(c, "pSurface");
+            if (s.level != 0) throw Skip{"ColorFill of a texture level other than 0"};
+            std::vector<cs::Value> args{ident(s.name)};
+            if (arg(c, "pRect").kind != Value::Kind::Null) args.push_back(rect(deref(c, "pRect")));
+            args.push_back(integer(dword(c, "color"), true));
+            emit("ColorFill", std::move(args));
+            return true;
+        }
+        if (m == "UpdateSurface") {
+            const SurfaceRef from = surface_ref(c, "pSourceSurface"), to = surface_ref(c, "pDestinationSurface");
+            cs::Value point = ident("NULL");
+            if (arg(c, "pDestPoint").kind != Value::Kind::Null) {
+                const Value& p = deref(c, "pDestPoint");
+                point = tuple({integer(member(p, "x")), integer(member(p, "y"))});
+            }
+            emit("UpdateSurface", {ident(from.name), integer(from.level), optional_rect(c, "pSourceRect"), ident(to.name),
+                                   integer(to.level), std::move(point)});
+            return true;
+        }
+        if (m == "UpdateTexture") {
+            emit("UpdateTexture", {binding(c, "pSourceTexture"), binding(c, "pDestinationTexture")});
+            return true;
+        }
         if (m == "CreateVertexShader" || m == "CreatePixelShader") {
             const bool vs = m == "CreateVertexShader";
             const auto* tokens = arg(c, "pFunction").blob();
@@ -344,7 +432,14 @@ private:
             if (volume) args.push_back(integer(d));
             args.push_back(integer(u32(c, "Levels")));
             args.push_back(ident(format_name(format)));
-            if (!volume && (u32(c, "Usage") & kUsageRenderTarget)) args.push_back(ident("RENDERTARGET"));
+            const uint32_t usage = u32(c, "Usage");
+            if (!volume && (usage & kUsageRenderTarget)) args.push_back(ident("RENDERTARGET"));
+            if (usage & kUsageDynamic) args.push_back(ident("DYNAMIC"));
+            if (const int64_t pool = num(c, "Pool"); pool != kPoolManaged) {
+                const auto pool_name = enum_name(EnumFamily::Pool, static_cast<uint32_t>(pool));
+                if (pool_name.empty() || pool < 0) throw Skip{"pool " + std::to_string(pool) + " is not a D3DPOOL"};
+                args.push_back(ident(pool_name));
+            }
             emit(std::string(m), std::move(args));
             Object& o = add(ptr, cube ? Object::Kind::CubeTexture : volume ? Object::Kind::VolumeTexture : Object::Kind::Texture, prefix);
             o.format = static_cast<Format>(format);
@@ -363,11 +458,12 @@ private:
             return true;
         }
         if (m == "CreateOffscreenPlainSurface") {
-            // A system-memory surface is a read-back target (GetRenderTargetData): nothing to replay.
-            const int64_t pool = num(c, "Pool");
-            if (pool != 2 && pool != 3) throw Skip{"an offscreen surface outside SYSTEMMEM/SCRATCH"};
-            Object& o = created(c, "ppSurface", Object::Kind::ReadBack, "readback");
-            o.owned = false;
+            const auto pool = enum_name(EnumFamily::Pool, u32(c, "Pool"));
+            if (pool.empty()) throw Skip{"an unknown pool"};
+            const uint64_t ptr = out_pointer(c, "ppSurface");
+            emit("CreateOffscreenPlainSurface", {ident("surf_" + hex(ptr)), integer(u32(c, "Width")), integer(u32(c, "Height")),
+                                                 ident(format_name(num(c, "Format"))), ident(pool)});
+            add(ptr, Object::Kind::ReadBack, "surf");
             return true;
         }
         if (m == "GetBackBuffer" || m == "GetRenderTarget" || m == "GetDepthStencilSurface") {
@@ -381,7 +477,12 @@ private:
             }
             return true;
         }
-        if (m == "GetRenderTargetData" || m == "GetFrontBufferData") return true;  // read-backs
+        if (m == "GetRenderTargetData") {
+            // A read-back, executed so that D3D9's rules for it are checked.
+            emit("GetRenderTargetData", {ident(surface_ref(c, "pRenderTarget").name), ident(surface_ref(c, "pDestSurface").name)});
+            return true;
+        }
+        if (m == "GetFrontBufferData") return true;  // a read-back of the screen: nothing to replay
         if (m.rfind("Get", 0) == 0 || m == "TestCooperativeLevel" || m == "ValidateDevice" || m == "SetCursorPosition" ||
             m == "ShowCursor" || m == "EvictManagedResources")
             return true;
@@ -390,9 +491,17 @@ private:
             return true;
         }
         if (m == "Clear") {
-            if (u32(c, "Count") != 0) throw Skip{"Clear with a rectangle list"};
-            emit("Clear", {clear_flags(u32(c, "Flags")), integer(dword(c, "Color"), true), real(f32(arg(c, "Z"), "Z")),
-                           integer(u32(c, "Stencil"))});
+            std::vector<cs::Value> args{clear_flags(u32(c, "Flags")), integer(dword(c, "Color"), true),
+                                        real(f32(arg(c, "Z"), "Z")), integer(u32(c, "Stencil"))};
+            const uint32_t count = u32(c, "Count");
+            const Value& rects = arg(c, "pRects");
+            if (count != 0) {
+                // apitrace records the D3DRECT array (one element as a pointer to one struct).
+                if (rects.kind != Value::Kind::Array || rects.items.size() != count)
+                    throw Skip{"pRects does not hold Count rectangles"};
+                for (const Value& r : rects.items) args.push_back(rect(r));
+            }
+            emit("Clear", std::move(args));
             return true;
         }
         if (m == "SetRenderState" || m == "SetSamplerState") {
@@ -510,11 +619,16 @@ private:
             return true;
         }
         if (m == "StretchRect") {
-            if (arg(c, "pSourceRect").kind != Value::Kind::Null || arg(c, "pDestRect").kind != Value::Kind::Null)
-                throw Skip{"StretchRect of a rectangle"};
             const auto filter = enum_name(EnumFamily::TextureFilter, u32(c, "Filter"));
             if (filter.empty()) throw Skip{"an unknown filter"};
-            emit("StretchRect", {binding(c, "pSourceSurface"), binding(c, "pDestSurface"), ident(filter)});
+            const SurfaceRef from = surface_ref(c, "pSourceSurface"), to = surface_ref(c, "pDestSurface");
+            if (from.level != 0 || to.level != 0) throw Skip{"StretchRect of a texture level other than 0"};
+            std::vector<cs::Value> args{ident(from.name)};
+            if (arg(c, "pSourceRect").kind != Value::Kind::Null) args.push_back(rect(deref(c, "pSourceRect")));
+            args.push_back(ident(to.name));
+            if (arg(c, "pDestRect").kind != Value::Kind::Null) args.push_back(rect(deref(c, "pDestRect")));
+            args.push_back(ident(filter));
+            emit("StretchRect", std::move(args));
             return true;
         }
         return false;
@@ -601,6 +715,13 @@ private:
             l.pitch = static_cast<uint64_t>(member(locked, "Pitch"));
             bits = static_cast<uint64_t>(member(locked, "pBits"));
             l.whole = pointer(c, "pRect") == 0;
+            if (!l.whole) {
+                const Value& r = deref(c, "pRect");
+                l.left = member(r, "left");
+                l.top = member(r, "top");
+                l.right = member(r, "right");
+                l.bottom = member(r, "bottom");
+            }
             if (o.kind == Object::Kind::Surface) {
                 l.level = o.level;
                 l.face = o.face;
@@ -640,7 +761,7 @@ private:
             emit("Lock", {ident(o.name), integer(static_cast<int64_t>(l->offset + (dest - start))), blob(bytes, cs::BlobType::Hex)});
             return true;
         }
-        if (dest != start || !l->whole) throw Skip{"an upload to part of a texture level"};
+        if (dest != start || (!l->whole && o.kind == Object::Kind::VolumeTexture)) throw Skip{"an upload to part of a texture level"};
         const bool texture = o.kind == Object::Kind::Texture || o.kind == Object::Kind::CubeTexture ||
                              o.kind == Object::Kind::VolumeTexture ||
                              (o.kind == Object::Kind::Surface && o.format != Format::Unknown);
@@ -649,7 +770,16 @@ private:
         if (!info) throw Skip{"an upload in a format sm2emu does not have"};
         if (l->level >= 32) throw Skip{"level " + std::to_string(l->level) + " does not exist"};
         const bool compressed = info->kind == FormatKind::Compressed;
-        const uint64_t w = std::max<uint64_t>(1, o.width >> l->level), h = std::max<uint64_t>(1, o.height >> l->level);
+        if (!l->whole && compressed) throw Skip{"an upload to part of a DXTn level"};
+        uint64_t w = std::max<uint64_t>(1, o.width >> l->level), h = std::max<uint64_t>(1, o.height >> l->level);
+        if (!l->whole) {
+            // The rectangle's texels, rows at the recorded pitch (checked as a level's are below).
+            if (l->left < 0 || l->top < 0 || l->right <= l->left || l->bottom <= l->top ||
+                static_cast<uint64_t>(l->right) > w || static_cast<uint64_t>(l->bottom) > h)
+                throw Skip{"a locked rectangle outside the level"};
+            w = static_cast<uint64_t>(l->right - l->left);
+            h = static_cast<uint64_t>(l->bottom - l->top);
+        }
         const uint64_t d = std::max<uint64_t>(1, o.depth >> l->level);
         const uint64_t row = compressed ? (w + 3) / 4 * info->bytes : w * info->bytes;
         const uint64_t rows = compressed ? (h + 3) / 4 : h;
@@ -682,22 +812,55 @@ private:
             args.push_back(ident(face));
         }
         args.push_back(integer(l->level));
+        if (!l->whole) args.push_back(tuple({integer(l->left), integer(l->top), integer(l->right), integer(l->bottom)}));
         args.push_back(blob(std::move(tight), cs::BlobType::Hex));
         emit("LockRect", std::move(args));
         return true;
     }
 
+    const StatementSink* sink_ = nullptr;
     ImportResult result_;
     std::unordered_map<uint64_t, Object> objects_;
     std::unordered_map<uint64_t, Lock> locks_;  // by the address the lock returned
     bool device_created_ = false;
-    bool recording_ = false;  // between BeginStateBlock and EndStateBlock
     bool emitted_ = false;
 };
 
 }  // namespace
 
 ImportResult import_d3d9(Reader& reader) { return Importer().run(reader); }
+
+ImportResult import_d3d9(Reader& reader, const StatementSink& sink) { return Importer(&sink).run(reader); }
+
+TraceReplay replay_trace(Reader& reader, Device& device, const ReplayOptions& options) {
+    TraceReplay result;
+    Replayer replayer(device, options);
+    const ImportResult imported = import_d3d9(reader, [&](const cs::Statement& statement, uint64_t call) {
+        if (statement.kind != cs::Statement::Kind::Call) return;
+        ++result.statements;
+        if (replayer.execute(statement, static_cast<size_t>(call))) return;
+        ++result.refused;
+        const ReplayDiagnostic d = replayer.diagnostics().back();
+        replayer.clear_diagnostics();
+        for (auto& k : result.refused_kinds)
+            if (k.call == statement.name) {
+                ++k.count;
+                return;
+            }
+        result.refused_kinds.push_back({statement.name, call, 1, d.message, d.code});
+    });
+    result.import = imported.report;
+    result.error = imported.error;
+    return result;
+}
+
+std::string TraceReplay::refusals_to_string() const {
+    std::string s;
+    for (const auto& k : refused_kinds)
+        s += "  " + k.call + ": " + std::to_string(k.count) + (k.count == 1 ? " call" : " calls") + " refused from call " +
+             std::to_string(k.first) + ": " + call_error_name(k.code) + ": " + k.message + "\n";
+    return s;
+}
 
 std::string ImportReport::to_string() const {
     std::string s = "imported " + std::to_string(imported) + ", accepted " + std::to_string(accepted) + ", skipped " +

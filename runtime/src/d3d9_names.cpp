@@ -56,6 +56,8 @@ constexpr Name kTextureFilters[] = {{0, "NONE"}, {1, "POINT"}, {2, "LINEAR"}, {3
 constexpr Name kClearFlags[] = {{1, "TARGET"}, {2, "ZBUFFER"}, {4, "STENCIL"}};
 constexpr Name kColorWrites[] = {{1, "RED"}, {2, "GREEN"}, {4, "BLUE"}, {8, "ALPHA"}};
 constexpr Name kBools[] = {{0, "FALSE"}, {1, "TRUE"}};
+constexpr Name kPools[] = {{0, "DEFAULT"}, {1, "MANAGED"}, {2, "SYSTEMMEM"}, {3, "SCRATCH"}};
+constexpr Name kStateBlockTypes[] = {{1, "ALL"}, {2, "PIXELSTATE"}, {3, "VERTEXSTATE"}};
 constexpr Name kCubeFaces[] = {{0, "POSITIVE_X"}, {1, "NEGATIVE_X"}, {2, "POSITIVE_Y"},
                                {3, "NEGATIVE_Y"}, {4, "POSITIVE_Z"}, {5, "NEGATIVE_Z"}};
 
@@ -153,6 +155,8 @@ const Family kFamilies[] = {
     {F::ColorWrite, "D3DCOLORWRITEENABLE_", kColorWrites},
     {F::CubeFace, "D3DCUBEMAP_FACE_", kCubeFaces},
     {F::Bool, "", kBools},
+    {F::Pool, "D3DPOOL_", kPools},
+    {F::StateBlockType, "D3DSBT_", kStateBlockTypes},
 };
 
 const Family& family_of(EnumFamily family) {

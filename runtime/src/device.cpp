@@ -3,6 +3,7 @@
 #include "sm2/runtime/device.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -12,6 +13,7 @@
 #include <utility>
 
 #include "device_internal.h"
+#include "state_block.h"
 #include "worker_pool.h"
 #include "sm2/isa/validator.h"
 #include "sm2/runtime/file_io.h"
@@ -70,6 +72,14 @@ Device::Device(DeviceOptions options) : options_(std::move(options)) {
     vs_f_.assign(kMaxVertexShaderConstantsF, {0.0f, 0.0f, 0.0f, 0.0f});
     ps_f_.assign(kMaxPixelShaderConstantsF, {0.0f, 0.0f, 0.0f, 0.0f});
     if (options_.threads == 0) options_.threads = 1;
+    // The D3D9 defaults of the render states RenderState does not model (the fixed-function and
+    // tessellation ones state blocks capture): LIGHTING, COLORVERTEX, LOCALVIEWER TRUE,
+    // DIFFUSEMATERIALSOURCE COLOR1, SPECULARMATERIALSOURCE COLOR2, POSITIONDEGREE CUBIC,
+    // NORMALDEGREE LINEAR, MIN/MAXTESSELLATIONLEVEL and ADAPTIVETESS_Z 1.0f; the others 0.
+    other_render_states_ = {{137, 1}, {139, 0}, {141, 1}, {142, 1}, {143, 0}, {145, 1}, {146, 2},
+                            {147, 0}, {148, 0}, {151, 0}, {163, 0}, {167, 0}, {170, 0}, {172, 3},
+                            {173, 1}, {178, 0x3F800000}, {179, 0x3F800000}, {180, 0}, {181, 0},
+                            {182, 0x3F800000}, {183, 0}, {184, 0}};
     sampler_.set_precision(options_.filter_precision);
     sampler_.set_block_path(!options_.reference_paths);
 }
@@ -176,9 +186,47 @@ CallResult Device::create_index_buffer(const std::string& name, uint32_t length,
     return add_resource(name, std::move(r));
 }
 
+namespace {
+
+// D3D9's usage/pool rules at creation: RENDERTARGET and DYNAMIC resources live in DEFAULT (a
+// MANAGED RENDERTARGET or DYNAMIC resource is D3DERR_INVALIDCALL, and so is a SCRATCH one).
+std::optional<std::string> usage_error(const char* call, const TextureUsage& usage) {
+    const Pool pool = usage.pool.value_or(usage.render_target ? Pool::Default : Pool::Managed);
+    if (static_cast<uint32_t>(pool) > 3) return std::string(call) + ": pool " + std::to_string(static_cast<uint32_t>(pool)) + " is not a D3DPOOL";
+    if (usage.render_target && pool != Pool::Default)
+        return std::string(call) + ": a RENDERTARGET texture must be in the DEFAULT pool, not " + pool_name(pool);
+    if (usage.dynamic && (pool == Pool::Managed || pool == Pool::Scratch))
+        return std::string(call) + ": a DYNAMIC texture cannot be in the " + pool_name(pool) + " pool";
+    return std::nullopt;
+}
+
+}  // namespace
+
+const char* pool_name(Pool pool) {
+    switch (pool) {
+    case Pool::Default: return "DEFAULT";
+    case Pool::Managed: return "MANAGED";
+    case Pool::SystemMem: return "SYSTEMMEM";
+    case Pool::Scratch: return "SCRATCH";
+    }
+    return "unknown";
+}
+
 CallResult Device::create_texture(const std::string& name, uint32_t width, uint32_t height, uint32_t levels,
                                   Format format, bool render_target) {
+    return create_texture(name, width, height, levels, format, TextureUsage{render_target, false, std::nullopt});
+}
+
+CallResult Device::create_cube_texture(const std::string& name, uint32_t edge, uint32_t levels, Format format,
+                                       bool render_target) {
+    return create_cube_texture(name, edge, levels, format, TextureUsage{render_target, false, std::nullopt});
+}
+
+CallResult Device::create_texture(const std::string& name, uint32_t width, uint32_t height, uint32_t levels,
+                                  Format format, TextureUsage usage) {
+    const bool render_target = usage.render_target;
     if (resources_.count(name)) return CallResult::fail("a resource named '" + name + "' already exists");
+    if (auto error = usage_error("CreateTexture", usage)) return CallResult::fail(*error);
     if (render_target && !is_render_target_format(format))
         return CallResult::fail("CreateTexture: " + format_name(format) + " cannot be a render target");
     if (within(width, Texture::kMaxSize2D) && within(height, Texture::kMaxSize2D))
@@ -189,6 +237,8 @@ CallResult Device::create_texture(const std::string& name, uint32_t width, uint3
     auto r = std::make_shared<Resource>();
     r->kind = Resource::Kind::Texture;
     r->render_target_usage = render_target;
+    r->dynamic_usage = usage.dynamic;
+    r->pool = usage.pool.value_or(render_target ? Pool::Default : Pool::Managed);
     try {
         r->texture = Texture::create_2d(format, width, height, levels);
     } catch (const std::bad_alloc&) {
@@ -200,8 +250,10 @@ CallResult Device::create_texture(const std::string& name, uint32_t width, uint3
 }
 
 CallResult Device::create_cube_texture(const std::string& name, uint32_t edge, uint32_t levels, Format format,
-                                       bool render_target) {
+                                       TextureUsage usage) {
+    const bool render_target = usage.render_target;
     if (resources_.count(name)) return CallResult::fail("a resource named '" + name + "' already exists");
+    if (auto error = usage_error("CreateCubeTexture", usage)) return CallResult::fail(*error);
     if (render_target && !is_render_target_format(format))
         return CallResult::fail("CreateCubeTexture: " + format_name(format) + " cannot be a render target");
     if (within(edge, Texture::kMaxSize2D))
@@ -212,6 +264,8 @@ CallResult Device::create_cube_texture(const std::string& name, uint32_t edge, u
     auto r = std::make_shared<Resource>();
     r->kind = Resource::Kind::Texture;
     r->render_target_usage = render_target;
+    r->dynamic_usage = usage.dynamic;
+    r->pool = usage.pool.value_or(render_target ? Pool::Default : Pool::Managed);
     try {
         r->texture = Texture::create_cube(format, edge, levels);
     } catch (const std::bad_alloc&) {
@@ -223,8 +277,10 @@ CallResult Device::create_cube_texture(const std::string& name, uint32_t edge, u
 }
 
 CallResult Device::create_volume_texture(const std::string& name, uint32_t width, uint32_t height,
-                                         uint32_t depth, uint32_t levels, Format format) {
+                                         uint32_t depth, uint32_t levels, Format format, TextureUsage usage) {
     if (resources_.count(name)) return CallResult::fail("a resource named '" + name + "' already exists");
+    if (usage.render_target) return CallResult::fail("CreateVolumeTexture: a volume texture cannot be a render target");
+    if (auto error = usage_error("CreateVolumeTexture", usage)) return CallResult::fail(*error);
     if (within(width, Texture::kMaxSizeVolume) && within(height, Texture::kMaxSizeVolume) &&
         within(depth, Texture::kMaxSizeVolume))
         if (auto refused = reserve_memory("CreateVolumeTexture: '" + name + "'",
@@ -233,6 +289,8 @@ CallResult Device::create_volume_texture(const std::string& name, uint32_t width
             return refused;
     auto r = std::make_shared<Resource>();
     r->kind = Resource::Kind::Texture;
+    r->dynamic_usage = usage.dynamic;
+    r->pool = usage.pool.value_or(Pool::Managed);
     try {
         r->texture = Texture::create_volume(format, width, height, depth, levels);
     } catch (const std::bad_alloc&) {
@@ -254,6 +312,29 @@ CallResult Device::create_render_target(const std::string& name, uint32_t width,
         return refused;
     auto r = std::make_shared<Resource>();
     r->kind = Resource::Kind::RenderTarget;
+    r->surface = Surface(format, width, height);
+    return add_resource(name, std::move(r));
+}
+
+CallResult Device::create_offscreen_plain_surface(const std::string& name, uint32_t width, uint32_t height,
+                                                 Format format, Pool pool) {
+    if (width == 0 || height == 0 || width > Texture::kMaxSize2D || height > Texture::kMaxSize2D)
+        return CallResult::fail("CreateOffscreenPlainSurface: size " + std::to_string(width) + "x" + std::to_string(height) +
+                                " is out of range");
+    const FormatInfo* info = format_info(format);
+    if (!info || (info->kind != FormatKind::Color && info->kind != FormatKind::Signed))
+        return CallResult::fail("CreateOffscreenPlainSurface: " + format_name(format) + " is not a surface format sm2emu can hold");
+    // D3D9 refuses off-screen plain surfaces in the MANAGED pool.
+    if (pool != Pool::Default && pool != Pool::SystemMem && pool != Pool::Scratch)
+        return CallResult::fail(std::string("CreateOffscreenPlainSurface: the ") + pool_name(pool) +
+                                " pool is not DEFAULT, SYSTEMMEM or SCRATCH");
+    if (auto refused = reserve_memory("CreateOffscreenPlainSurface: '" + name + "'", texture_bytes(format, width, height, 1, 1, 1));
+        !refused)
+        return refused;
+    auto r = std::make_shared<Resource>();
+    r->kind = Resource::Kind::RenderTarget;
+    r->offscreen_plain = true;
+    r->pool = pool;
     r->surface = Surface(format, width, height);
     return add_resource(name, std::move(r));
 }
@@ -329,10 +410,24 @@ CallResult Device::lock(const std::string& buffer, uint32_t offset, std::span<co
     return {};
 }
 
+namespace {
+
+// D3D9's lock rule: a DEFAULT-pool texture can be locked only with DYNAMIC usage; MANAGED,
+// SYSTEMMEM and SCRATCH ones always. (Render targets and off-screen plain surfaces are locked
+// as before: the stream's way to fill them.)
+std::optional<std::string> lock_error(const char* call, const std::string& name, const Device::Resource& r) {
+    if (r.kind == Device::Resource::Kind::Texture && r.pool == Pool::Default && !r.dynamic_usage)
+        return std::string(call) + ": '" + name + "' is a DEFAULT-pool texture without DYNAMIC usage, which cannot be locked";
+    return std::nullopt;
+}
+
+}  // namespace
+
 CallResult Device::lock_rect(const std::string& texture, uint32_t face, uint32_t level,
                              std::span<const std::byte> data) {
     auto r = find(texture);
     if (!r) return CallResult::fail("LockRect: no resource named '" + texture + "'");
+    if (auto error = lock_error("LockRect", texture, *r)) return CallResult::fail(*error);
     Surface* target = nullptr;
     if (r->kind == Resource::Kind::RenderTarget) {
         if (face != 0 || level != 0) return CallResult::fail("LockRect: a render target has one level");
@@ -351,11 +446,46 @@ CallResult Device::lock_rect(const std::string& texture, uint32_t face, uint32_t
     return {};
 }
 
+CallResult Device::lock_rect(const std::string& texture, uint32_t face, uint32_t level, const PixelRect& rect,
+                             std::span<const std::byte> data) {
+    auto r = find(texture);
+    if (!r) return CallResult::fail("LockRect: no resource named '" + texture + "'");
+    if (auto error = lock_error("LockRect", texture, *r)) return CallResult::fail(*error);
+    Surface* target = nullptr;
+    if (r->kind == Resource::Kind::RenderTarget && face == 0 && level == 0) {
+        target = &r->surface;
+    } else if (r->kind == Resource::Kind::Texture && r->texture.type() != TextureType::Volume && face < r->texture.faces() &&
+               level < r->texture.levels()) {
+        target = &r->texture.surface(level, face);
+    } else {
+        return CallResult::fail("LockRect: '" + texture + "' has no face " + std::to_string(face) + " level " +
+                                std::to_string(level) + " of a 2D/cube texture or render target");
+    }
+    const FormatInfo* info = format_info(target->format());
+    if (info->kind == FormatKind::Compressed) return CallResult::fail("LockRect: a rectangle of a DXTn level");
+    if (rect.left < 0 || rect.top < 0 || rect.right <= rect.left || rect.bottom <= rect.top ||
+        static_cast<uint32_t>(rect.right) > target->width() || static_cast<uint32_t>(rect.bottom) > target->height())
+        return CallResult::fail("LockRect: rectangle {" + std::to_string(rect.left) + " " + std::to_string(rect.top) + " " +
+                                std::to_string(rect.right) + " " + std::to_string(rect.bottom) + "} is not inside the " +
+                                std::to_string(target->width()) + "x" + std::to_string(target->height()) + " level");
+    const size_t row = static_cast<size_t>(rect.right - rect.left) * info->bytes;
+    const size_t rows = static_cast<size_t>(rect.bottom - rect.top);
+    if (data.size() != row * rows)
+        return CallResult::fail("LockRect: " + std::to_string(data.size()) + " bytes given, the rectangle holds " +
+                                std::to_string(row * rows));
+    for (size_t y = 0; y < rows; ++y)
+        std::memcpy(target->bytes().data() + (static_cast<size_t>(rect.top) + y) * target->row_pitch() +
+                        static_cast<size_t>(rect.left) * info->bytes,
+                    data.data() + y * row, row);
+    return {};
+}
+
 CallResult Device::lock_box(const std::string& texture, uint32_t level, std::span<const std::byte> data) {
     auto r = find(texture);
     if (!r) return CallResult::fail("LockBox: no resource named '" + texture + "'");
     if (r->kind != Resource::Kind::Texture || r->texture.type() != TextureType::Volume)
         return CallResult::fail("LockBox: '" + texture + "' is not a volume texture");
+    if (auto error = lock_error("LockBox", texture, *r)) return CallResult::fail(*error);
     if (level >= r->texture.levels()) return CallResult::fail("LockBox: level " + std::to_string(level) + " out of range");
     Surface& target = r->texture.surface(level, 0);
     if (data.size() != target.bytes().size())
@@ -421,15 +551,19 @@ CallResult bind_resource(const std::shared_ptr<Device::Resource>& found, const s
 }  // namespace
 
 CallResult Device::set_vertex_declaration(const std::string& name) {
+    select_binding([](StateSelection& s, uint32_t) { s.declaration = true; }, 0);
     return bind_resource(find(name), name, "SetVertexDeclaration", Resource::Kind::Declaration, "vertex declaration", declaration_);
 }
 CallResult Device::set_vertex_shader(const std::string& name) {
+    select_binding([](StateSelection& s, uint32_t) { s.vertex_shader = true; }, 0);
     return bind_resource(find(name), name, "SetVertexShader", Resource::Kind::VertexShader, "vertex shader", vertex_shader_);
 }
 CallResult Device::set_pixel_shader(const std::string& name) {
+    select_binding([](StateSelection& s, uint32_t) { s.pixel_shader = true; }, 0);
     return bind_resource(find(name), name, "SetPixelShader", Resource::Kind::PixelShader, "pixel shader", pixel_shader_);
 }
 CallResult Device::set_indices(const std::string& name) {
+    select_binding([](StateSelection& s, uint32_t) { s.indices = true; }, 0);
     return bind_resource(find(name), name, "SetIndices", Resource::Kind::IndexBuffer, "index buffer", indices_);
 }
 
@@ -442,13 +576,20 @@ CallResult Device::set_stream_source(uint32_t stream, const std::string& buffer,
     if (found && offset >= found->bytes.size() && offset != 0)
         return CallResult::fail("SetStreamSource: offset " + std::to_string(offset) + " is past the buffer");
     streams_[stream] = StreamBinding{found, offset, stride};
+    select_binding([](StateSelection& s, uint32_t i) { s.streams.set(i); }, stream);
     return {};
 }
 
 CallResult Device::set_texture(uint32_t stage, const std::string& texture) {
     if (stage >= kMaxSamplers) return CallResult::fail("SetTexture: stage " + std::to_string(stage) + " out of range");
+    if (auto r = find(texture); r && r->kind == Resource::Kind::Texture && (r->pool == Pool::SystemMem || r->pool == Pool::Scratch))
+        return CallResult::fail("SetTexture: '" + texture + "' is in the " + pool_name(r->pool) +
+                                " pool, which the device cannot sample");
     auto result = bind_resource(find(texture), texture, "SetTexture", Resource::Kind::Texture, "texture", textures_[stage]);
-    if (result) sampler_.set_texture(stage, textures_[stage] ? &textures_[stage]->texture : nullptr);
+    if (result) {
+        sampler_.set_texture(stage, textures_[stage] ? &textures_[stage]->texture : nullptr);
+        select_binding([](StateSelection& s, uint32_t i) { s.textures.set(i); }, stage);
+    }
     return result;
 }
 
@@ -463,7 +604,7 @@ CallResult Device::set_render_target(uint32_t index, const std::string& name) {
     auto r = find(name);
     if (!r) return CallResult::fail("SetRenderTarget: no resource named '" + name + "'");
     const Surface* s = nullptr;
-    if (r->kind == Resource::Kind::RenderTarget) s = &r->surface;
+    if (r->kind == Resource::Kind::RenderTarget && !r->offscreen_plain) s = &r->surface;
     else if (r->kind == Resource::Kind::Texture && r->render_target_usage && r->texture.type() == TextureType::Texture2D)
         s = &r->texture.surface(0, 0);
     if (!s) return CallResult::fail("SetRenderTarget: '" + name + "' is not a render target");
@@ -488,6 +629,8 @@ CallResult Device::set_render_state(uint32_t type, uint32_t value) {
     auto result = runtime::set_render_state(copy, type, value);
     if (!result.ok) return CallResult::fail("SetRenderState: " + result.error);
     render_state_ = copy;
+    if (result.ignored) other_render_states_[type] = value;
+    select(type);
     return {};
 }
 
@@ -497,6 +640,7 @@ CallResult Device::set_sampler_state(uint32_t sampler, uint32_t type, uint32_t v
     if (!copy.set(type, value)) return CallResult::fail("SetSamplerState: state " + std::to_string(type) + " does not exist");
     sampler_states_[sampler] = copy;
     sampler_.set_state(sampler, copy);
+    select_sampler(sampler, type);
     return {};
 }
 
@@ -535,23 +679,41 @@ CallResult set_bools(const char* call, emu::StaticFlowConstants& flow, uint32_t 
 
 }  // namespace
 
+// Registers start .. start + count join the recorded state block (the set succeeded: in range).
+template <size_t N>
+void mark_registers(std::bitset<N>& registers, uint32_t start, size_t count) {
+    for (size_t r = start; r < start + count && r < N; ++r) registers.set(r);
+}
+
 CallResult Device::set_vertex_shader_constant_f(uint32_t start, std::span<const float> values) {
-    return set_floats("SetVertexShaderConstantF", vs_f_, start, values);
+    auto result = set_floats("SetVertexShaderConstantF", vs_f_, start, values);
+    if (result && recording_) mark_registers(recording_->vs_float, start, values.size() / 4);
+    return result;
 }
 CallResult Device::set_pixel_shader_constant_f(uint32_t start, std::span<const float> values) {
-    return set_floats("SetPixelShaderConstantF", ps_f_, start, values);
+    auto result = set_floats("SetPixelShaderConstantF", ps_f_, start, values);
+    if (result && recording_) mark_registers(recording_->ps_float, start, values.size() / 4);
+    return result;
 }
 CallResult Device::set_vertex_shader_constant_i(uint32_t start, std::span<const int32_t> values) {
-    return set_ints("SetVertexShaderConstantI", vs_flow_, start, values);
+    auto result = set_ints("SetVertexShaderConstantI", vs_flow_, start, values);
+    if (result && recording_) mark_registers(recording_->vs_int, start, values.size() / 4);
+    return result;
 }
 CallResult Device::set_pixel_shader_constant_i(uint32_t start, std::span<const int32_t> values) {
-    return set_ints("SetPixelShaderConstantI", ps_flow_, start, values);
+    auto result = set_ints("SetPixelShaderConstantI", ps_flow_, start, values);
+    if (result && recording_) mark_registers(recording_->ps_int, start, values.size() / 4);
+    return result;
 }
 CallResult Device::set_vertex_shader_constant_b(uint32_t start, std::span<const uint32_t> values) {
-    return set_bools("SetVertexShaderConstantB", vs_flow_, start, values);
+    auto result = set_bools("SetVertexShaderConstantB", vs_flow_, start, values);
+    if (result && recording_) mark_registers(recording_->vs_bool, start, values.size());
+    return result;
 }
 CallResult Device::set_pixel_shader_constant_b(uint32_t start, std::span<const uint32_t> values) {
-    return set_bools("SetPixelShaderConstantB", ps_flow_, start, values);
+    auto result = set_bools("SetPixelShaderConstantB", ps_flow_, start, values);
+    if (result && recording_) mark_registers(recording_->ps_bool, start, values.size());
+    return result;
 }
 
 CallResult Device::set_viewport(const Viewport& viewport) {
@@ -564,6 +726,7 @@ CallResult Device::set_viewport(const Viewport& viewport) {
     if (!(viewport.min_z >= 0.0f && viewport.min_z <= 1.0f && viewport.max_z >= 0.0f && viewport.max_z <= 1.0f))
         return CallResult::fail("SetViewport: MinZ/MaxZ outside [0, 1]");
     viewport_ = viewport;
+    select_binding([](StateSelection& s, uint32_t) { s.viewport = true; }, 0);
     return {};
 }
 
@@ -571,19 +734,21 @@ CallResult Device::set_scissor_rect(const PixelRect& rect) {
     if (rect.left < 0 || rect.top < 0 || rect.right < rect.left || rect.bottom < rect.top)
         return CallResult::fail("SetScissorRect: malformed rectangle");
     scissor_ = rect;
+    select_binding([](StateSelection& s, uint32_t) { s.scissor = true; }, 0);
     return {};
 }
 
 CallResult Device::set_clip_plane(uint32_t index, const Vec4& plane) {
     if (index >= kMaxUserClipPlanes) return CallResult::fail("SetClipPlane: index " + std::to_string(index) + " out of range");
     clip_planes_[index] = plane;
+    select_binding([](StateSelection& s, uint32_t i) { s.clip_planes.set(i); }, index);
     return {};
 }
 
 // ---------------------------------------------------------------------------------------------
 // Frame
 
-CallResult Device::clear(uint32_t flags, uint32_t color, float z, uint32_t stencil) {
+CallResult Device::clear(uint32_t flags, uint32_t color, float z, uint32_t stencil, std::span<const PixelRect> rects) {
     if (flags == 0 || (flags & ~(kClearTarget | kClearZBuffer | kClearStencil)) != 0)
         return CallResult::fail("Clear: flags " + std::to_string(flags) + " are not D3DCLEAR_TARGET/ZBUFFER/STENCIL");
     Surface* rt0 = render_target_surface(0);
@@ -594,10 +759,22 @@ CallResult Device::clear(uint32_t flags, uint32_t color, float z, uint32_t stenc
     if ((flags & kClearStencil) && ds->info().stencil_bits == 0)
         return CallResult::fail("Clear: STENCIL on a depth format without stencil bits");
     if ((flags & kClearZBuffer) && !(z >= 0.0f && z <= 1.0f)) return CallResult::fail("Clear: z outside [0, 1]");
-    PixelRect rect{static_cast<int32_t>(viewport_.x), static_cast<int32_t>(viewport_.y),
+    PixelRect area{static_cast<int32_t>(viewport_.x), static_cast<int32_t>(viewport_.y),
                    static_cast<int32_t>(viewport_.x + viewport_.width),
                    static_cast<int32_t>(viewport_.y + viewport_.height)};
-    if (render_state_.scissor_test_enable) rect = rect.intersect(scissor_);
+    if (render_state_.scissor_test_enable) area = area.intersect(scissor_);
+    // Each D3DRECT is clipped to the viewport (and scissor) rectangle; none: the whole of it.
+    const std::span<const PixelRect> parts = rects.empty() ? std::span<const PixelRect>(&area, 1) : rects;
+    for (const PixelRect& part : parts) {
+        const PixelRect rect = rects.empty() ? area : part.intersect(area);
+        if (rect.empty()) continue;
+        clear_rect(flags, color, z, stencil, rect);
+    }
+    return {};
+}
+
+void Device::clear_rect(uint32_t flags, uint32_t color, float z, uint32_t stencil, const PixelRect& rect) {
+    DepthStencilSurface* ds = depth_stencil_ ? &*depth_stencil_->depth : nullptr;
     if (flags & kClearTarget) {
         const auto rgba = color_to_float4(color);
         const Float4 value{rgba[0], rgba[1], rgba[2], rgba[3]};
@@ -616,9 +793,8 @@ CallResult Device::clear(uint32_t flags, uint32_t color, float z, uint32_t stenc
             }
         }
     }
-    if (flags & (kClearZBuffer | kClearStencil))
+    if (ds && (flags & (kClearZBuffer | kClearStencil)))
         ds->clear(rect, (flags & kClearZBuffer) != 0, z, (flags & kClearStencil) != 0, stencil);
-    return {};
 }
 
 CallResult Device::begin_scene() {
@@ -648,13 +824,52 @@ CallResult Device::present() {
         char file[32];
         std::snprintf(file, sizeof file, "frame_%04u.png", frame_);
         try {
-            write_file(options_, back_buffer_->surface, options_.output_dir + "/" + file);
+            write_file(options_, gamma_ramp_.empty() ? back_buffer_->surface : through_gamma_ramp(back_buffer_->surface),
+                       options_.output_dir + "/" + file);
         } catch (const std::exception& e) {
             return CallResult::fail(std::string("Present: ") + e.what());
         }
     }
     ++frame_;
     return {};
+}
+
+CallResult Device::set_software_vertex_processing(bool software) {
+    software_vertex_processing_ = software;
+    return {};
+}
+
+CallResult Device::set_npatch_mode(float segments) {
+    if (segments == 0.0f) return {};
+    return CallResult::fail("SetNPatchMode: N-patches (" + std::to_string(segments) +
+                            " segments) are not drawn by sm2emu; only 0 (off) is accepted");
+}
+
+CallResult Device::set_gamma_ramp(uint32_t swap_chain, std::span<const uint16_t> ramp) {
+    if (swap_chain != 0) return CallResult::fail("SetGammaRamp: swap chain " + std::to_string(swap_chain) + " does not exist");
+    if (ramp.size() != 3 * 256)
+        return CallResult::fail("SetGammaRamp: " + std::to_string(ramp.size()) + " WORDs given, a D3DGAMMARAMP holds 768");
+    bool identity = true;
+    for (size_t i = 0; i < ramp.size(); ++i) identity = identity && ramp[i] == (i % 256) * 257;
+    if (identity) gamma_ramp_.clear();
+    else gamma_ramp_.assign(ramp.begin(), ramp.end());
+    return {};
+}
+
+Surface Device::through_gamma_ramp(const Surface& surface) const {
+    Surface out = surface;
+    for (uint32_t y = 0; y < out.height(); ++y)
+        for (uint32_t x = 0; x < out.width(); ++x) {
+            Float4 v = out.read(x, y);
+            for (unsigned c = 0; c < 3; ++c) {
+                // The 8-bit level of the channel (NaN and out-of-range values clamped first).
+                const float level = std::isnan(v[c]) ? 0.0f : std::clamp(v[c], 0.0f, 1.0f) * 255.0f;
+                const auto index = static_cast<size_t>(std::lround(level));
+                v[c] = static_cast<float>(gamma_ramp_[c * 256 + index]) / 65535.0f;
+            }
+            out.write(x, y, 0, v);
+        }
+    return out;
 }
 
 CallResult Device::set_max_instruction_slots(uint32_t slots) {

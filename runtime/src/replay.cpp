@@ -351,6 +351,36 @@ void expect_count(std::span<const Value> values, size_t count, std::string_view 
                             std::to_string(values.size())};
 }
 
+// A rectangle { left top right bottom } (RECT/D3DRECT), or NULL for the whole surface.
+std::optional<PixelRect> optional_rect(const Args& args, size_t i, std::string_view what) {
+    const Value& v = args.at(i);
+    if (v.kind == Kind::Identifier && v.text == "NULL") return std::nullopt;
+    if (v.kind != Kind::Tuple) args.wrong_kind(i, what, "a rectangle { left top right bottom } or NULL");
+    if (v.items.size() != 4) args.fail(i, what, "a rectangle has 4 numbers (left top right bottom), got " + std::to_string(v.items.size()));
+    const Args n(v.items);
+    return PixelRect{n.i32(0, "left"), n.i32(1, "top"), n.i32(2, "right"), n.i32(3, "bottom")};
+}
+
+// CreateTexture/CreateCubeTexture/CreateVolumeTexture keywords after the format, in any order:
+// RENDERTARGET, DYNAMIC (with or without D3DUSAGE_) and a pool (DEFAULT, MANAGED, SYSTEMMEM,
+// SCRATCH, with or without D3DPOOL_).
+TextureUsage texture_usage(const Args& args, size_t first) {
+    TextureUsage usage;
+    for (size_t i = first; i < args.size(); ++i) {
+        const std::string_view what = "usage or pool";
+        std::string_view name = args.identifier(i, what);
+        if (auto pool = enum_value(EnumFamily::Pool, name)) {
+            usage.pool = static_cast<Pool>(*pool);
+            continue;
+        }
+        if (name.substr(0, 9) == "D3DUSAGE_") name.remove_prefix(9);
+        if (name == "RENDERTARGET") usage.render_target = true;
+        else if (name == "DYNAMIC") usage.dynamic = true;
+        else args.fail(i, what, "expected RENDERTARGET, DYNAMIC or a pool (" + family_names(EnumFamily::Pool) + "), got " + describe(args.at(i)));
+    }
+    return usage;
+}
+
 using Handler = CallResult (*)(Context&, const Args&);
 
 struct CallSpec {
@@ -384,22 +414,29 @@ const CallSpec kCalls[] = {
      [](Context& c, const Args& a) {
          return c.device.create_index_buffer(a.identifier(0, "name"), a.u32(1, "length"), a.format(2, "format"));
      }},
-    {"CreateTexture", 5, 6, "name width height levels format [RENDERTARGET]",
+    {"CreateTexture", 5, 8, "name width height levels format [RENDERTARGET] [DYNAMIC] [pool]",
      [](Context& c, const Args& a) {
-         if (a.size() == 6) a.flag(5, "usage", "RENDERTARGET", "D3DUSAGE_");
+         const TextureUsage usage = texture_usage(a, 5);
          return c.device.create_texture(a.identifier(0, "name"), a.u32(1, "width"), a.u32(2, "height"),
-                                        a.u32(3, "levels"), a.format(4, "format"), a.size() == 6);
+                                        a.u32(3, "levels"), a.format(4, "format"), usage);
      }},
-    {"CreateCubeTexture", 4, 5, "name edge levels format [RENDERTARGET]",
+    {"CreateCubeTexture", 4, 7, "name edge levels format [RENDERTARGET] [DYNAMIC] [pool]",
      [](Context& c, const Args& a) {
-         if (a.size() == 5) a.flag(4, "usage", "RENDERTARGET", "D3DUSAGE_");
+         const TextureUsage usage = texture_usage(a, 4);
          return c.device.create_cube_texture(a.identifier(0, "name"), a.u32(1, "edge"), a.u32(2, "levels"),
-                                             a.format(3, "format"), a.size() == 5);
+                                             a.format(3, "format"), usage);
      }},
-    {"CreateVolumeTexture", 6, 6, "name width height depth levels format",
+    {"CreateVolumeTexture", 6, 8, "name width height depth levels format [DYNAMIC] [pool]",
      [](Context& c, const Args& a) {
+         const TextureUsage usage = texture_usage(a, 6);
          return c.device.create_volume_texture(a.identifier(0, "name"), a.u32(1, "width"), a.u32(2, "height"),
-                                               a.u32(3, "depth"), a.u32(4, "levels"), a.format(5, "format"));
+                                               a.u32(3, "depth"), a.u32(4, "levels"), a.format(5, "format"), usage);
+     }},
+    {"CreateOffscreenPlainSurface", 5, 5, "name width height format pool",
+     [](Context& c, const Args& a) {
+         return c.device.create_offscreen_plain_surface(a.identifier(0, "name"), a.u32(1, "width"), a.u32(2, "height"),
+                                                        a.format(3, "format"),
+                                                        static_cast<Pool>(a.enumeration(4, "pool", EnumFamily::Pool)));
      }},
     {"CreateRenderTarget", 4, 4, "name width height format",
      [](Context& c, const Args& a) {
@@ -426,11 +463,19 @@ const CallSpec kCalls[] = {
      [](Context& c, const Args& a) {
          return c.device.lock(a.identifier(0, "buffer"), a.u32(1, "offset"), a.bytes(2, "data"));
      }},
-    {"LockRect", 3, 4, "texture [face] level data",
+    {"LockRect", 3, 5, "texture [face] level [rect] data",
      [](Context& c, const Args& a) {
-         const bool face = a.size() == 4;
-         return c.device.lock_rect(a.identifier(0, "texture"), face ? cube_face(a, 1) : 0,
-                                   a.u32(face ? 2 : 1, "level"), a.bytes(face ? 3 : 2, "data"));
+         // A rectangle is the tuple before the data; a face, the argument after the texture
+         // when one more is left.
+         const bool rect = a.at(a.size() - 2).kind == Kind::Tuple;
+         const bool face = a.size() == (rect ? 5u : 4u);
+         if (!face && a.size() == 5) a.fail(3, "rect", "expected a rectangle { left top right bottom }, got " + describe(a.at(3)));
+         const std::string& name = a.identifier(0, "texture");
+         const uint32_t f = face ? cube_face(a, 1) : 0;
+         const uint32_t level = a.u32(face ? 2 : 1, "level");
+         if (!rect) return c.device.lock_rect(name, f, level, a.bytes(a.size() - 1, "data"));
+         const auto r = optional_rect(a, a.size() - 2, "rect");
+         return c.device.lock_rect(name, f, level, *r, a.bytes(a.size() - 1, "data"));
      }},
     {"LockBox", 3, 3, "texture level data",
      [](Context& c, const Args& a) {
@@ -527,9 +572,14 @@ const CallSpec kCalls[] = {
      [](Context& c, const Args& a) { return c.device.set_render_target(a.u32(0, "index"), a.binding(1, "surface")); }},
     {"SetDepthStencilSurface", 1, 1, "surface|NULL",
      [](Context& c, const Args& a) { return c.device.set_depth_stencil_surface(a.binding(0, "surface")); }},
-    {"Clear", 4, 4, "flags color z stencil",
+    {"Clear", 4, kMany, "flags color z stencil [{ x1 y1 x2 y2 }...]",
      [](Context& c, const Args& a) {
-         return c.device.clear(clear_flags(a, 0), a.u32(1, "color"), a.f32(2, "z"), a.u32(3, "stencil"));
+         std::vector<PixelRect> rects;
+         for (size_t i = 4; i < a.size(); ++i) {
+             if (a.at(i).kind != Kind::Tuple) a.wrong_kind(i, "rect", "a rectangle { x1 y1 x2 y2 }");
+             rects.push_back(*optional_rect(a, i, "rect"));
+         }
+         return c.device.clear(clear_flags(a, 0), a.u32(1, "color"), a.f32(2, "z"), a.u32(3, "stencil"), rects);
      }},
     {"BeginScene", 0, 0, "no arguments", [](Context& c, const Args&) { return c.device.begin_scene(); }},
     {"EndScene", 0, 0, "no arguments", [](Context& c, const Args&) { return c.device.end_scene(); }},
@@ -572,12 +622,73 @@ const CallSpec kCalls[] = {
          return c.device.draw_indexed_primitive_up(type, min_index, num_vertices, count, indices, format, vertices,
                                                    a.u32(7, "stride"));
      }},
-    {"StretchRect", 2, 3, "source destination [filter]",
+    {"StretchRect", 2, 5, "source [source_rect] destination [destination_rect] [filter]",
      [](Context& c, const Args& a) {
-         const TextureFilter filter = a.size() == 3 ? static_cast<TextureFilter>(a.enumeration(2, "filter", EnumFamily::TextureFilter))
-                                                    : TextureFilter::None;
-         return c.device.stretch_rect(a.identifier(0, "source"), a.identifier(1, "destination"), filter);
+         // Rectangles are tuples, so each is recognised where it may stand.
+         size_t i = 0;
+         const std::string& source = a.identifier(i++, "source");
+         std::optional<PixelRect> source_rect, destination_rect;
+         if (i < a.size() && a.at(i).kind == Kind::Tuple) source_rect = optional_rect(a, i++, "source_rect");
+         if (i >= a.size()) throw ArgumentError{"expects a destination after the source"};
+         const std::string& destination = a.identifier(i++, "destination");
+         if (i < a.size() && a.at(i).kind == Kind::Tuple) destination_rect = optional_rect(a, i++, "destination_rect");
+         TextureFilter filter = TextureFilter::None;
+         if (i < a.size()) filter = static_cast<TextureFilter>(a.enumeration(i++, "filter", EnumFamily::TextureFilter));
+         if (i < a.size()) a.fail(i, "extra", "unexpected " + describe(a.at(i)) + " after the filter");
+         return c.device.stretch_rect(source, source_rect, destination, destination_rect, filter);
      }},
+    {"ColorFill", 2, 3, "surface [rect] color",
+     [](Context& c, const Args& a) {
+         const std::optional<PixelRect> rect = a.size() == 3 ? optional_rect(a, 1, "rect") : std::nullopt;
+         return c.device.color_fill(a.identifier(0, "surface"), rect, a.u32(a.size() - 1, "color"));
+     }},
+    {"UpdateSurface", 6, 6, "source source_level source_rect|NULL destination destination_level { x y }|NULL",
+     [](Context& c, const Args& a) {
+         uint32_t x = 0, y = 0;
+         const Value& point = a.at(5);
+         if (!(point.kind == Kind::Identifier && point.text == "NULL")) {
+             if (point.kind != Kind::Tuple || point.items.size() != 2) a.wrong_kind(5, "destination point", "a point { x y } or NULL");
+             const Args xy(point.items);
+             x = xy.u32(0, "x");
+             y = xy.u32(1, "y");
+         }
+         return c.device.update_surface(a.identifier(0, "source"), a.u32(1, "source_level"), optional_rect(a, 2, "source_rect"),
+                                        a.identifier(3, "destination"), a.u32(4, "destination_level"), x, y);
+     }},
+    {"UpdateTexture", 2, 2, "source destination",
+     [](Context& c, const Args& a) {
+         return c.device.update_texture(a.identifier(0, "source"), a.identifier(1, "destination"));
+     }},
+    {"GetRenderTargetData", 2, 2, "render_target destination",
+     [](Context& c, const Args& a) {
+         return c.device.get_render_target_data(a.identifier(0, "render_target"), a.identifier(1, "destination"));
+     }},
+    {"SetSoftwareVertexProcessing", 1, 1, "TRUE|FALSE",
+     [](Context& c, const Args& a) {
+         return c.device.set_software_vertex_processing(a.enumeration(0, "software", EnumFamily::Bool) != 0);
+     }},
+    {"SetGammaRamp", 2, 2, "swap_chain u16[ 256 red, 256 green, 256 blue ]",
+     [](Context& c, const Args& a) {
+         const auto data = a.bytes(1, "ramp");
+         if (data.size() != 3 * 256 * 2) a.fail(1, "ramp", std::to_string(data.size()) + " bytes; a D3DGAMMARAMP is 768 WORDs (1536 bytes)");
+         std::vector<uint16_t> ramp(3 * 256);
+         std::memcpy(ramp.data(), data.data(), data.size());
+         return c.device.set_gamma_ramp(a.u32(0, "swap_chain"), ramp);
+     }},
+    {"SetNPatchMode", 1, 1, "segments",
+     [](Context& c, const Args& a) { return c.device.set_npatch_mode(a.f32(0, "segments")); }},
+    {"CreateStateBlock", 2, 2, "name ALL|PIXELSTATE|VERTEXSTATE",
+     [](Context& c, const Args& a) {
+         return c.device.create_state_block(a.identifier(0, "name"),
+                                            static_cast<StateBlockType>(a.enumeration(1, "type", EnumFamily::StateBlockType)));
+     }},
+    {"BeginStateBlock", 0, 0, "no arguments", [](Context& c, const Args&) { return c.device.begin_state_block(); }},
+    {"EndStateBlock", 1, 1, "name",
+     [](Context& c, const Args& a) { return c.device.end_state_block(a.identifier(0, "name")); }},
+    {"Capture", 1, 1, "state_block",
+     [](Context& c, const Args& a) { return c.device.capture_state_block(a.identifier(0, "state_block")); }},
+    {"Apply", 1, 1, "state_block",
+     [](Context& c, const Args& a) { return c.device.apply_state_block(a.identifier(0, "state_block")); }},
     {"Present", 0, 0, "no arguments", [](Context& c, const Args&) { return c.device.present(); }},
     {"SetDeviceLimits", 2, kMany, "NAME value ... (INSTRUCTIONSLOTS n)",
      [](Context& c, const Args& a) {

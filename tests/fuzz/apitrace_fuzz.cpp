@@ -1,6 +1,6 @@
 // Fuzz target: arbitrary bytes as an apitrace trace, in the Snappy container when they start with
 // "at", else as the bare event stream (where mutations reach the signatures and values).
-// Then the D3D9 importer on the same bytes (sm2 cs import).
+// Then the D3D9 importer on the same bytes (sm2 cs import), whole and streamed (sm2 replay).
 // Properties: never a crash, a hang or an allocation the input does not back; every call read
 // prints; an error names a byte inside the data read; a bare stream yields at most one call per
 // two bytes (an enter and a leave event take at least that).
@@ -53,5 +53,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     (void)report.to_string();
     (void)sm2::runtime::cs::to_text(imported.stream);
     (void)sm2::runtime::cs::pack(imported.stream);
+    // Streamed (sm2 replay APP.trace): the same statements, one call at a time.
+    auto streamed_reader = Reader::open(bytes, error, true);
+    if (!streamed_reader) std::abort();
+    size_t streamed = 0;
+    const ImportResult by_call = import_d3d9(*streamed_reader, [&](const sm2::runtime::cs::Statement&, uint64_t) { ++streamed; });
+    if (streamed != imported.stream.statements.size() || !by_call.stream.statements.empty()) std::abort();
     return 0;
 }

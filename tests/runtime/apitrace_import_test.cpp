@@ -2,6 +2,8 @@
 // their reference dumps (`apitrace dump -v`, independent of this code) say about them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -12,6 +14,7 @@
 
 #include "sm2/runtime/apitrace_import.h"
 #include "sm2/runtime/device.h"
+#include "sm2/runtime/image_io.h"
 #include "sm2/runtime/replay.h"
 
 namespace sm2::runtime::apitrace {
@@ -58,10 +61,11 @@ TEST(ApitraceImport, ShaderSceneImportsEveryCallAndReplays) {
     EXPECT_TRUE(r.report.skipped_kinds.empty());
     // Accepted with no statement: Direct3DCreate9, the 2 Lock/Unlock pairs of the vertex buffers
     // (their memcpy is the upload), GetSurfaceLevel, GetRenderTarget, per frame GetBackBuffer +
-    // CreateOffscreenPlainSurface(SYSTEMMEM) + GetRenderTargetData + GetDesc + LockRect(READONLY) +
-    // UnlockRect, and the Releases that leave an object alive or end a read-back surface.
-    EXPECT_EQ(r.report.imported, 147u);
-    EXPECT_EQ(r.report.accepted, 27u);
+    // GetDesc + LockRect(READONLY) + UnlockRect, and the Releases that leave an object alive. The
+    // read-backs (per frame CreateOffscreenPlainSurface(SYSTEMMEM), GetRenderTargetData and the
+    // surface's last Release) are imported.
+    EXPECT_EQ(r.report.imported, 153u);
+    EXPECT_EQ(r.report.accepted, 21u);
     EXPECT_EQ(r.report.imported + r.report.accepted, 174u);
 
     // As many statements of each kind as the reference dump has calls.
@@ -120,9 +124,9 @@ TEST(ApitraceImport, ShaderSceneImportsEveryCallAndReplays) {
     EXPECT_EQ(cs::to_text(*unpacked.stream), text);
 }
 
-// The other two captures use calls the vocabulary lacks (fixed function, state blocks, clears
-// with rectangles): each such kind is reported once, with the number of its first call and how
-// many there were, as the reference dump lists them.
+// The other two captures use calls the vocabulary lacks (fixed function): each such kind is
+// reported once, with the number of its first call and how many there were, as the reference
+// dump lists them.
 TEST(ApitraceImport, UnsupportedKindsAreReportedOnceWithTheirFirstCall) {
     struct Expect {
         const char* trace;
@@ -130,13 +134,10 @@ TEST(ApitraceImport, UnsupportedKindsAreReportedOnceWithTheirFirstCall) {
         std::vector<std::string> kinds;  // skipped for "not in the stream vocabulary yet"
     };
     const Expect cases[] = {
-        {"ff_lit_cube", 82, 35, 58,
+        {"ff_lit_cube", 91, 26, 58,
          {"IDirect3DDevice9::SetTransform", "IDirect3DDevice9::SetMaterial", "IDirect3DDevice9::SetLight",
           "IDirect3DDevice9::LightEnable", "IDirect3DDevice9::SetTextureStageState", "IDirect3DDevice9::SetFVF"}},
-        {"mixed_states", 139, 50, 79,
-         {"IDirect3DDevice9::CreateStateBlock", "IDirect3DDevice9::BeginStateBlock", "IDirect3DDevice9::EndStateBlock",
-          "IDirect3DDevice9::SetTextureStageState", "IDirect3DStateBlock9::Apply", "IDirect3DDevice9::UpdateSurface",
-          "IDirect3DDevice9::SetFVF", "IDirect3DDevice9::ColorFill", "IDirect3DStateBlock9::Capture"}},
+        {"mixed_states", 186, 41, 41, {"IDirect3DDevice9::SetTextureStageState", "IDirect3DDevice9::SetFVF"}},
     };
     for (const auto& e : cases) {
         const ImportResult r = import_file(e.trace);
@@ -146,6 +147,7 @@ TEST(ApitraceImport, UnsupportedKindsAreReportedOnceWithTheirFirstCall) {
         EXPECT_EQ(r.report.accepted, e.accepted) << e.trace;
         EXPECT_EQ(r.report.skipped, e.skipped) << e.trace;
         EXPECT_EQ(r.report.imported + r.report.accepted + r.report.skipped, r.report.calls);
+        EXPECT_EQ(r.report.skipped_kinds.size(), e.kinds.size()) << r.report.to_string();
         uint64_t total = 0;
         for (const auto& k : r.report.skipped_kinds) total += k.count;
         EXPECT_EQ(total, r.report.skipped);
@@ -158,20 +160,168 @@ TEST(ApitraceImport, UnsupportedKindsAreReportedOnceWithTheirFirstCall) {
             EXPECT_EQ(it->reason, "not in the stream vocabulary yet") << name;
         }
     }
-    // mixed_states: the 5 SetRenderState calls recorded between BeginStateBlock (call 4) and
-    // EndStateBlock (call 10) are not applied; Clear with a rectangle list (48 is the first) and
-    // StretchRect to a rectangle (80) are skipped with their reason.
     const ImportResult r = import_file("mixed_states");
-    std::map<std::string, ImportReport::Skipped> kinds;
-    for (const auto& k : r.report.skipped_kinds) kinds[k.call] = k;
-    EXPECT_EQ(kinds.at("IDirect3DDevice9::SetRenderState").first, 5u);
-    EXPECT_EQ(kinds.at("IDirect3DDevice9::SetRenderState").count, 5u);
-    EXPECT_EQ(kinds.at("IDirect3DDevice9::Clear").first, 48u);
-    EXPECT_EQ(kinds.at("IDirect3DDevice9::Clear").reason, "Clear with a rectangle list");
-    EXPECT_EQ(kinds.at("IDirect3DDevice9::StretchRect").first, 80u);
-    EXPECT_EQ(kinds.at("IDirect3DDevice9::StretchRect").reason, "StretchRect of a rectangle");
     EXPECT_NE(r.report.to_string().find("  IDirect3DDevice9::SetFVF: 22 calls skipped from call 65: not in the stream vocabulary yet\n"),
               std::string::npos) << r.report.to_string();
+}
+
+// mixed_states' device calls: one statement per call of each kind the reference dump lists
+// (state blocks, clears with rectangle lists, UpdateSurface, ColorFill, StretchRect of
+// rectangles, the read-back surfaces), with the dump's arguments.
+TEST(ApitraceImport, MixedStatesDeviceCallsBecomeStatements) {
+    const ImportResult r = import_file("mixed_states");
+    ASSERT_FALSE(r.error);
+    const auto dump = dump_calls("mixed_states");
+    const auto counts = statement_counts(r.stream);
+    const std::pair<const char*, const char*> kinds[] = {
+        {"CreateStateBlock", "IDirect3DDevice9::CreateStateBlock"}, {"BeginStateBlock", "IDirect3DDevice9::BeginStateBlock"},
+        {"EndStateBlock", "IDirect3DDevice9::EndStateBlock"},       {"Apply", "IDirect3DStateBlock9::Apply"},
+        {"Capture", "IDirect3DStateBlock9::Capture"},               {"UpdateSurface", "IDirect3DDevice9::UpdateSurface"},
+        {"ColorFill", "IDirect3DDevice9::ColorFill"},               {"StretchRect", "IDirect3DDevice9::StretchRect"},
+        {"Clear", "IDirect3DDevice9::Clear"},                       {"GetRenderTargetData", "IDirect3DDevice9::GetRenderTargetData"},
+        {"CreateOffscreenPlainSurface", "IDirect3DDevice9::CreateOffscreenPlainSurface"},
+    };
+    for (const auto& [statement, call] : kinds) EXPECT_EQ(counts.at(statement), dump.at(call).second) << statement;
+    // The five SetRenderState calls between BeginStateBlock (4) and EndStateBlock (10) are imported
+    // in their place: the replayer records them into the block.
+    const std::string text = cs::to_text(r.stream);
+    EXPECT_NE(text.find("\nCreateStateBlock sb_3afbb0 ALL\nBeginStateBlock\nSetRenderState SHADEMODE FLAT\n"), std::string::npos);
+    EXPECT_NE(text.find("\nSetRenderState DESTBLEND ONE\nEndStateBlock sb_3c8f40\n"), std::string::npos);
+    EXPECT_NE(text.find("\nCreateStateBlock sb_3cccb0 PIXELSTATE\n"), std::string::npos);
+    // 48 Clear(Count = 2, pRects = {{4, 4, 30, 30}, {34, 34, 60, 60}}, TARGET, 4294918208)
+    EXPECT_NE(text.find("\nClear TARGET 0xFFFF4040 1.0 0 { 4 4 30 30 } { 34 34 60 60 }\n"), std::string::npos);
+    // 54/58 UpdateSurface of the SYSTEMMEM texture's level 0 into the DEFAULT one's.
+    EXPECT_NE(text.find(" 64 64 1 X8R8G8B8 SYSTEMMEM\n"), std::string::npos);
+    EXPECT_NE(text.find(" 64 64 1 X8R8G8B8 DEFAULT\n"), std::string::npos);
+    EXPECT_NE(text.find(" 0 { 0 0 16 16 } tex_"), std::string::npos);
+    EXPECT_NE(text.find(" 0 { 40 8 }\n"), std::string::npos);
+    // 73 ColorFill(pRect = {0, 0, 16, 16}, color = 4294967040); 81 StretchRect with both rectangles.
+    EXPECT_NE(text.find("\nColorFill rt_3c99d0 { 0 0 16 16 } 0xFFFFFF00\n"), std::string::npos);
+    EXPECT_NE(text.find("\nStretchRect rt_3c99d0 { 8 8 32 32 } backbuffer { 192 0 256 64 } LINEAR\n"), std::string::npos);
+    EXPECT_NE(text.find("\nStretchRect rt_3c99d0 backbuffer { 128 0 192 64 } POINT\n"), std::string::npos);
+    EXPECT_NE(text.find("\nApply sb_3c8f40\n"), std::string::npos);
+    EXPECT_NE(text.find("\nCapture sb_3cccb0\n"), std::string::npos);
+    EXPECT_NE(text.find("\nRelease sb_3cccb0\n"), std::string::npos);
+    auto unpacked = cs::unpack(cs::pack(r.stream));
+    ASSERT_TRUE(unpacked.ok());
+    EXPECT_EQ(cs::to_text(*unpacked.stream), text);
+}
+
+// The frames of mixed_states where they do not depend on the fixed-function pipeline (its draws
+// are refused until it exists), against the frames the program read back from Wine's d3d9:
+// cell (0,0), three clears with rectangle lists, exactly; cells (2,0) and (3,0), StretchRect of
+// an offscreen render target filled by ColorFill (POINT: exactly; LINEAR: within 3/255, bilinear
+// weights) except the pixels whose source texels the triangle drawn into it (fixed function:
+// vertices (16,2), (30,30), (2,30)) comes within 1.5 pixels of.
+TEST(ApitraceImport, MixedStatesFramesMatchWineWhereTheyNeedNoFixedFunction) {
+    const ImportResult imported = import_file("mixed_states");
+    ASSERT_FALSE(imported.error);
+    std::vector<Surface> frames;
+    DeviceOptions options;
+    options.output_dir = "frames";  // not written: write_image keeps the surfaces
+    options.write_image = [&](const Surface& s, const std::string&) { frames.push_back(s); };
+    Device device(options);
+    const ReplayResult replayed = replay(device, imported.stream);
+    for (const auto& d : replayed.diagnostics)
+        EXPECT_EQ(d.call + ": " + d.message, "DrawPrimitiveUP: no vertex declaration is set") << d.to_string();
+    ASSERT_EQ(frames.size(), 2u);
+
+    // Outward distance of a source texel centre from the triangle (positive: outside).
+    const auto outside_by = [](double px, double py) {
+        const double v[3][2] = {{16, 2}, {30, 30}, {2, 30}};
+        double best = -1e9;
+        for (int i = 0; i < 3; ++i) {
+            const double* a = v[i];
+            const double* b = v[(i + 1) % 3];
+            const double* c = v[(i + 2) % 3];
+            const double nx = b[1] - a[1], ny = a[0] - b[0], len = std::hypot(nx, ny);
+            double d = ((px - a[0]) * nx + (py - a[1]) * ny) / len;
+            if (((c[0] - a[0]) * nx + (c[1] - a[1]) * ny) > 0) d = -d;  // orient outward
+            best = std::max(best, d);
+        }
+        return best;
+    };
+    const auto safe = [&](uint32_t sx, uint32_t sy) { return outside_by(sx + 0.5, sy + 0.5) > 1.5; };
+
+    for (uint32_t f = 0; f < 2; ++f) {
+        const Image expected = read_image(trace_path("mixed_states/frame_" + std::to_string(f) + ".png"));
+        ASSERT_EQ(expected.width, 256u);
+        const auto channel = [](float v) { return static_cast<int>(std::lround(v * 255.0f)); };
+        const auto differs = [&](uint32_t x, uint32_t y, int tolerance) {
+            const Float4 got = frames[f].read(x, y);
+            int worst = 0;
+            for (unsigned c = 0; c < 3; ++c)
+                worst = std::max(worst, std::abs(channel(got[c]) - channel(expected.rgba[(y * 256 + x) * 4 + c])));
+            return worst > tolerance;
+        };
+        uint32_t compared = 0;
+        for (uint32_t y = 0; y < 64; ++y)
+            for (uint32_t x = 0; x < 64; ++x, ++compared) EXPECT_FALSE(differs(x, y, 0)) << "frame " << f << " " << x << "," << y;
+        // (2,0): the whole 32x32 source onto {128 0 192 64}, POINT: texel ((x-128)/2, y/2).
+        for (uint32_t y = 0; y < 64; ++y)
+            for (uint32_t x = 128; x < 192; ++x)
+                if (safe((x - 128) / 2, y / 2)) {
+                    ++compared;
+                    EXPECT_FALSE(differs(x, y, 0)) << "frame " << f << " " << x << "," << y;
+                }
+        // (3,0): source {8 8 32 32} onto {192+4f 0 256 64-4f}, LINEAR; outside it the cleared background.
+        const uint32_t left = 192 + 4 * f, bottom = 64 - 4 * f, width = 256 - left;
+        const auto taps = [](uint32_t d, uint32_t size) {
+            const double u = (d + 0.5) * 24.0 / size - 0.5;
+            const auto first = static_cast<uint32_t>(std::max(0.0, std::floor(u)));
+            return std::pair<uint32_t, uint32_t>{8 + std::min(first, 23u), 8 + std::min(first + 1, 23u)};
+        };
+        for (uint32_t y = 0; y < 64; ++y)
+            for (uint32_t x = 192; x < 256; ++x) {
+                if (x < left || y >= bottom) {
+                    ++compared;
+                    EXPECT_FALSE(differs(x, y, 0)) << "frame " << f << " " << x << "," << y;
+                    continue;
+                }
+                const auto [x0, x1] = taps(x - left, width);
+                const auto [y0, y1] = taps(y, bottom);
+                if (!safe(x0, y0) || !safe(x1, y0) || !safe(x0, y1) || !safe(x1, y1)) continue;
+                ++compared;
+                EXPECT_FALSE(differs(x, y, 3)) << "frame " << f << " " << x << "," << y;
+            }
+        EXPECT_GT(compared, 4096u + 2000u) << "frame " << f;
+    }
+}
+
+// replay_trace: the streamed import replays the same frames as the stream imported whole, and
+// reports the refused draws (mixed_states' 38 fixed-function DrawPrimitiveUP, from call 66 in the
+// reference dump) as one kind.
+TEST(ApitraceImport, StreamedReplayOfATraceEqualsTheImportedStreams) {
+    const auto frames_of = [](auto&& run) {
+        std::vector<std::vector<std::byte>> frames;
+        DeviceOptions options;
+        options.output_dir = "frames";  // not written: write_image keeps the bytes
+        options.write_image = [&](const Surface& s, const std::string&) { frames.push_back(s.bytes()); };
+        Device device(options);
+        run(device);
+        return frames;
+    };
+    const ImportResult imported = import_file("mixed_states");
+    const auto whole = frames_of([&](Device& device) { (void)replay(device, imported.stream); });
+    TraceReplay streamed;
+    const auto direct = frames_of([&](Device& device) {
+        std::optional<Error> error;
+        auto reader = Reader::open_file(trace_path("mixed_states.trace"), error);
+        ASSERT_TRUE(reader);
+        streamed = replay_trace(*reader, device);
+    });
+    ASSERT_EQ(whole.size(), 2u);
+    EXPECT_EQ(direct, whole);
+    EXPECT_FALSE(streamed.error);
+    EXPECT_EQ(streamed.import.imported, 186u);
+    EXPECT_EQ(streamed.statements, 186u);
+    EXPECT_EQ(streamed.refused, 38u);
+    ASSERT_EQ(streamed.refused_kinds.size(), 1u);
+    EXPECT_EQ(streamed.refused_kinds[0].call, "DrawPrimitiveUP");
+    EXPECT_EQ(streamed.refused_kinds[0].first, dump_calls("mixed_states").at("IDirect3DDevice9::DrawPrimitiveUP").first);
+    EXPECT_EQ(streamed.refused_kinds[0].count, 38u);
+    EXPECT_EQ(streamed.refusals_to_string(),
+              "  DrawPrimitiveUP: 38 calls refused from call 66: D3DERR_INVALIDCALL: no vertex declaration is set\n");
 }
 
 // Texture uploads: LockRect/LockBox of whole levels with their memcpy become LockRect/LockBox

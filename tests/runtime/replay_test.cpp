@@ -499,7 +499,7 @@ TEST_F(Replay, ClearFlagsAsTupleAndNumber) {
     refused_with("Clear {} 0 1 0", "an empty tuple clears nothing");
     refused_with("Clear 8 0 1 0", "flags 8 are not D3DCLEAR_TARGET/ZBUFFER/STENCIL");
     refused_with("Clear ZBUFFER 0 1.5 0", "z outside [0, 1]");
-    refused_with("Clear TARGET 0 1", "expects 4 arguments (flags color z stencil), got 3");
+    refused_with("Clear TARGET 0 1", "expects at least 4 arguments (flags color z stencil [{ x1 y1 x2 y2 }...]), got 3");
 }
 
 TEST_F(Replay, PresentCountsAndWritesFramesAndTimesThem) {
@@ -763,7 +763,7 @@ TEST_F(Replay, DiagnosticsNameFileLineCallAndGoOn) {
             "CreateVertexBuffer vb3 16\n"      // 6
             "CreateVertexBuffer vb3 16\n"      // 7
             "CreateTexture t 4 4 1 A8R8G8B9\n" // 8
-            "CreateTexture t 4 4 1 A8R8G8B8 DYNAMIC\n"  // 9
+            "CreateTexture t 4 4 1 A8R8G8B8 SHINY\n"    // 9
             "Clear TARGET 0xFF0000FF 1 0\n",   // 10
             {
                 "t.sm2cs:3: D3DERR_INVALIDCALL: CreateVertexBuffer: expects 2 arguments (name length), got 1",
@@ -773,8 +773,8 @@ TEST_F(Replay, DiagnosticsNameFileLineCallAndGoOn) {
                 "integer",
                 "t.sm2cs:7: D3DERR_INVALIDCALL: CreateVertexBuffer: a resource named 'vb3' already exists",
                 "t.sm2cs:8: D3DERR_INVALIDCALL: CreateTexture: argument 5 (format): unknown format 'A8R8G8B9'",
-                "t.sm2cs:9: D3DERR_INVALIDCALL: CreateTexture: argument 6 (usage): expected RENDERTARGET, got a name "
-                "'DYNAMIC'",
+                "t.sm2cs:9: D3DERR_INVALIDCALL: CreateTexture: argument 6 (usage or pool): expected RENDERTARGET, "
+                "DYNAMIC or a pool (DEFAULT, MANAGED, SYSTEMMEM, SCRATCH), got a name 'SHINY'",
             });
     EXPECT_TRUE(device().has_resource("vb3"));
     EXPECT_FALSE(device().has_resource("vb0"));

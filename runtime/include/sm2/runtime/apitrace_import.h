@@ -5,12 +5,14 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "sm2/runtime/apitrace.h"
 #include "sm2/runtime/command_stream.h"
+#include "sm2/runtime/replay.h"
 
 namespace sm2::runtime::apitrace {
 
@@ -41,5 +43,32 @@ struct ImportResult {
 
 // Reads `reader` to its end.
 [[nodiscard]] ImportResult import_d3d9(Reader& reader);
+// Streaming: each statement goes to `sink` with the number of the call it came from as soon as
+// that call is translated; nothing accumulates (ImportResult::stream stays empty), so memory
+// follows the largest call, not the trace.
+using StatementSink = std::function<void(const cs::Statement& statement, uint64_t call)>;
+[[nodiscard]] ImportResult import_d3d9(Reader& reader, const StatementSink& sink);
+
+// `sm2 replay APP.trace`: the trace imported and replayed on `device` one call at a time. Calls
+// the device refuses are counted per statement kind, each kind with its first call number and
+// message, and the replay goes on.
+struct TraceReplay {
+    struct Refused {
+        std::string call;      // the statement: "DrawPrimitiveUP"
+        uint64_t first = 0;    // trace call number of the first refused one
+        uint64_t count = 0;
+        std::string message;   // the first one's diagnostic, without the call name
+        CallError code = CallError::InvalidCall;
+    };
+    ImportReport import;
+    std::optional<Error> error;        // the trace was malformed here (the calls before ran)
+    uint64_t statements = 0;           // statements executed
+    uint64_t refused = 0;              // of them refused by the device
+    std::vector<Refused> refused_kinds;
+    // "  DrawPrimitiveUP: 44 calls refused from call 66: D3DERR_INVALIDCALL: no vertex
+    // declaration is set", one line per kind.
+    [[nodiscard]] std::string refusals_to_string() const;
+};
+[[nodiscard]] TraceReplay replay_trace(Reader& reader, Device& device, const ReplayOptions& options = {});
 
 }  // namespace sm2::runtime::apitrace

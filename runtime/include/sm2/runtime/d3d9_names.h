@@ -33,6 +33,8 @@ enum class EnumFamily : uint8_t {
     ColorWrite,      // D3DCOLORWRITEENABLE_* (bits)
     CubeFace,        // D3DCUBEMAP_FACE_* (D3DCUBEMAP_FACES; texture.h's CubeFace values)
     Bool,            // TRUE / FALSE
+    Pool,            // D3DPOOL_*
+    StateBlockType,  // D3DSBT_*
 };
 
 // How the DWORD value of a render or sampler state is written in a command stream.

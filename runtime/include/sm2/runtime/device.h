@@ -34,6 +34,7 @@
 namespace sm2::runtime {
 
 class WorkerPool;
+struct StateBlockObject;
 
 // The HRESULT a refused call returns: D3DERR_INVALIDCALL for bad arguments and state,
 // D3DERR_OUTOFVIDEOMEMORY when a resource does not fit in DeviceOptions::memory_limit, and
@@ -55,6 +56,24 @@ struct CallResult {
 
 // D3DCLEAR_* flags.
 constexpr uint32_t kClearTarget = 1, kClearZBuffer = 2, kClearStencil = 4;
+
+// D3DPOOL: where a resource lives, which decides what may be done with it (docs/command-stream.md
+// "Pools"): DEFAULT resources can be rendered to and sampled but locked only when DYNAMIC (or an
+// off-screen plain surface); MANAGED ones sampled and locked; SYSTEMMEM ones locked and used as
+// UpdateSurface/UpdateTexture sources or GetRenderTargetData destinations; SCRATCH ones locked only.
+enum class Pool : uint8_t { Default = 0, Managed = 1, SystemMem = 2, Scratch = 3 };
+[[nodiscard]] const char* pool_name(Pool pool);  // "DEFAULT", "MANAGED", "SYSTEMMEM", "SCRATCH"
+
+// Usage and pool of a created texture: D3DUSAGE_RENDERTARGET, D3DUSAGE_DYNAMIC, D3DPOOL.
+struct TextureUsage {
+    bool render_target = false;
+    bool dynamic = false;
+    // MANAGED unless given; a RENDERTARGET texture is always DEFAULT.
+    std::optional<Pool> pool;
+};
+
+// D3DSTATEBLOCKTYPE
+enum class StateBlockType : uint8_t { All = 1, PixelState = 2, VertexState = 3 };
 
 constexpr unsigned kMaxVertexShaderConstantsF = 256;  // our D3DCAPS9.MaxVertexShaderConst
 constexpr unsigned kMaxPixelShaderConstantsF = 224;   // D3D9's SetPixelShaderConstantF range
@@ -121,10 +140,19 @@ public:
     CallResult create_index_buffer(const std::string& name, uint32_t length, Format format);
     CallResult create_texture(const std::string& name, uint32_t width, uint32_t height, uint32_t levels,
                               Format format, bool render_target = false);
+    CallResult create_texture(const std::string& name, uint32_t width, uint32_t height, uint32_t levels,
+                              Format format, TextureUsage usage);
     CallResult create_cube_texture(const std::string& name, uint32_t edge, uint32_t levels, Format format,
                                    bool render_target = false);
+    CallResult create_cube_texture(const std::string& name, uint32_t edge, uint32_t levels, Format format,
+                                   TextureUsage usage);
     CallResult create_volume_texture(const std::string& name, uint32_t width, uint32_t height,
-                                     uint32_t depth, uint32_t levels, Format format);
+                                     uint32_t depth, uint32_t levels, Format format, TextureUsage usage = {});
+    // CreateOffscreenPlainSurface: a lockable surface that cannot be a render target; in the
+    // DEFAULT pool it can be ColorFill'ed and StretchRect'ed to, in SYSTEMMEM it receives
+    // GetRenderTargetData.
+    CallResult create_offscreen_plain_surface(const std::string& name, uint32_t width, uint32_t height,
+                                              Format format, Pool pool);
     CallResult create_render_target(const std::string& name, uint32_t width, uint32_t height, Format format);
     CallResult create_depth_stencil_surface(const std::string& name, uint32_t width, uint32_t height,
                                             Format format);
@@ -137,6 +165,10 @@ public:
     CallResult lock_rect(const std::string& texture, uint32_t face, uint32_t level,
                          std::span<const std::byte> data);
     CallResult lock_box(const std::string& texture, uint32_t level, std::span<const std::byte> data);
+    // LockRect of a part of the level: `data` holds the rectangle's texels, rows tightly packed;
+    // the rectangle must lie inside the level (not for DXTn formats).
+    CallResult lock_rect(const std::string& texture, uint32_t face, uint32_t level, const PixelRect& rect,
+                         std::span<const std::byte> data);
     CallResult load_texture(const std::string& name, const std::string& path, bool generate_mips);
     CallResult generate_mip_sub_levels(const std::string& texture);
     CallResult release(const std::string& name);
@@ -165,7 +197,9 @@ public:
     CallResult set_clip_plane(uint32_t index, const Vec4& plane);
 
     // Frame
-    CallResult clear(uint32_t flags, uint32_t color, float z, uint32_t stencil);
+    // `rects` (D3DRECTs) empty: the whole viewport; otherwise each rectangle clipped to the
+    // viewport (and to the scissor rectangle when SCISSORTESTENABLE is TRUE).
+    CallResult clear(uint32_t flags, uint32_t color, float z, uint32_t stencil, std::span<const PixelRect> rects = {});
     CallResult begin_scene();
     CallResult end_scene();
     CallResult present();
@@ -179,6 +213,42 @@ public:
     // destination render target, scaling with POINT (NONE) or LINEAR filtering and converting
     // the format through decode_texel/encode_texel (stretch_rect.cpp).
     CallResult stretch_rect(const std::string& source, const std::string& destination, TextureFilter filter);
+    // StretchRect of a source rectangle onto a destination rectangle (nullopt: the whole surface).
+    CallResult stretch_rect(const std::string& source, const std::optional<PixelRect>& source_rect,
+                            const std::string& destination, const std::optional<PixelRect>& destination_rect,
+                            TextureFilter filter);
+    // ColorFill: a DEFAULT-pool surface (render target, RENDERTARGET texture level 0, off-screen
+    // plain surface) or its rectangle, set to a D3DCOLOR (surface_copy.cpp).
+    CallResult color_fill(const std::string& surface, const std::optional<PixelRect>& rect, uint32_t color);
+    // UpdateSurface: the source rectangle (whole surface) of a SYSTEMMEM surface or texture level
+    // copied unscaled, same format, to `destination_x/y` of a DEFAULT one (surface_copy.cpp).
+    CallResult update_surface(const std::string& source, uint32_t source_level, const std::optional<PixelRect>& source_rect,
+                              const std::string& destination, uint32_t destination_level, uint32_t destination_x,
+                              uint32_t destination_y);
+    // UpdateTexture: every level of a DEFAULT texture from the SYSTEMMEM texture level of the same size.
+    CallResult update_texture(const std::string& source, const std::string& destination);
+    // GetRenderTargetData: a render target copied to a SYSTEMMEM surface of its size and format.
+    CallResult get_render_target_data(const std::string& render_target, const std::string& destination);
+    // SetSoftwareVertexProcessing: accepted (vertex processing is software here either way).
+    CallResult set_software_vertex_processing(bool software);
+    // SetNPatchMode: 0 segments (N-patches off) is accepted; N-patches are not drawn, so any other
+    // count is refused.
+    CallResult set_npatch_mode(float segments);
+    // SetGammaRamp (swap chain 0): 256 red, 256 green, then 256 blue WORDs. Present writes the
+    // back buffer through it (channel value v in 0..255 becomes ramp[v] / 65535); the back buffer
+    // itself keeps its values, as the ramp is the display's.
+    CallResult set_gamma_ramp(uint32_t swap_chain, std::span<const uint16_t> ramp);
+
+    // State blocks (state_block.cpp): CreateStateBlock captures the type's states now;
+    // BeginStateBlock/EndStateBlock records which states are set in between (their values when
+    // EndStateBlock is called: the calls are applied, as D3D9 records them into the block and
+    // Capture/Apply use the block's selection); Capture re-reads the selected states from the
+    // device, Apply sets them.
+    CallResult create_state_block(const std::string& name, StateBlockType type);
+    CallResult begin_state_block();
+    CallResult end_state_block(const std::string& name);
+    CallResult capture_state_block(const std::string& name);
+    CallResult apply_state_block(const std::string& name);
 
     // Draws
     CallResult draw_primitive(uint32_t type, uint32_t start_vertex, uint32_t primitive_count);
@@ -212,9 +282,16 @@ public:
 
     struct Resource;
     struct ShaderObject;
+    struct StateSelection;
+    struct StateSnapshot;
 
 private:
     struct Draw;
+    void select(uint32_t render_state);  // while recording a state block: the state joins it
+    void select_sampler(uint32_t sampler, uint32_t type);
+    void select_binding(void (*mark)(StateSelection&, uint32_t), uint32_t index);
+    void capture(const StateSelection& selection, StateSnapshot& snapshot) const;
+    void apply(const StateSelection& selection, const StateSnapshot& snapshot);
     CallResult create_shader(const std::string& name, isa::Program program, isa::ShaderType type);
     CallResult add_resource(const std::string& name, std::shared_ptr<Resource> resource);
     // Refuses (D3DERR_OUTOFVIDEOMEMORY, "WHAT needs N bytes; ...") when `bytes` more would pass
@@ -224,6 +301,8 @@ private:
     CallResult run_draw(PrimitiveType type, uint32_t primitive_count, std::vector<uint32_t> draw_vertices,
                         std::span<const VertexStream> streams);
     Surface* render_target_surface(unsigned index) const;
+    void clear_rect(uint32_t flags, uint32_t color, float z, uint32_t stencil, const PixelRect& rect);
+    [[nodiscard]] Surface through_gamma_ramp(const Surface& surface) const;
     std::vector<VertexStream> bound_streams() const;  // SetStreamSource bindings, as spans
 
     DeviceOptions options_;
@@ -246,6 +325,14 @@ private:
     PixelRect scissor_{};
     std::array<Vec4, kMaxUserClipPlanes> clip_planes_{};
     bool in_scene_ = false;
+    bool software_vertex_processing_ = false;
+    std::vector<uint16_t> gamma_ramp_;  // empty: the identity
+    // Render states accepted but not modelled by RenderState (fixed-function, tessellation):
+    // their last DWORDs, so that state blocks capture and apply them like the others.
+    std::map<uint32_t, uint32_t> other_render_states_;
+    // BeginStateBlock ... EndStateBlock: what the calls in between set.
+    std::unique_ptr<StateSelection> recording_;
+    std::shared_ptr<StateBlockObject> state_before_recording_;  // given back at EndStateBlock
     uint32_t frame_ = 0;
     DrawStatistics stats_{};
     uint64_t memory_used_ = 0;

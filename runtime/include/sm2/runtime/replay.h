@@ -87,6 +87,8 @@ public:
     ReplayResult replay(const cs::Stream& stream);
 
     [[nodiscard]] const std::vector<ReplayDiagnostic>& diagnostics() const { return diagnostics_; }
+    // Drops the diagnostics kept so far (a long streamed replay reads each one as it comes).
+    void clear_diagnostics() { diagnostics_.clear(); }
     [[nodiscard]] Device& device() { return device_; }
 
 private:
