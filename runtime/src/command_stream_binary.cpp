@@ -9,7 +9,7 @@ namespace sm2::runtime::cs {
 namespace {
 
 // Binary ids are positions in this list plus kFirstCallId: append only, never reorder.
-constexpr std::array<std::string_view, 47> kCallNames = {
+constexpr std::array<std::string_view, 54> kCallNames = {
     "CreateDevice", "CreateVertexBuffer", "CreateIndexBuffer", "CreateTexture",
     "CreateCubeTexture", "CreateVolumeTexture", "CreateRenderTarget",
     "CreateDepthStencilSurface", "CreateVertexDeclaration", "CreateVertexShader",
@@ -21,7 +21,8 @@ constexpr std::array<std::string_view, 47> kCallNames = {
     "SetViewport", "SetScissorRect", "SetClipPlane", "SetRenderTarget",
     "SetDepthStencilSurface", "Clear", "BeginScene", "EndScene", "DrawPrimitive",
     "DrawIndexedPrimitive", "DrawPrimitiveUP", "DrawIndexedPrimitiveUP", "StretchRect",
-    "Present", "SaveSurface", "SetDeviceLimits",
+    "Present", "SaveSurface", "SetDeviceLimits", "SetFVF", "SetTransform", "MultiplyTransform",
+    "SetMaterial", "SetLight", "LightEnable", "SetTextureStageState",
 };
 
 constexpr uint16_t kCommentId = 0;
