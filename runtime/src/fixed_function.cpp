@@ -66,6 +66,11 @@ FvfLayout fvf_layout(uint32_t fvf) {
         add(DeclType::FLOAT3, kUsagePosition, 0);
         const unsigned betas = (position - kFvfXyzB1) / 2 + 1;
         const unsigned weights = last_beta ? betas - 1 : betas;
+        if (weights > 4) {
+            // No declaration type holds 5 floats; D3D9 blends with at most 4 matrices anyway.
+            layout.error = "XYZB5 without LASTBETA: 5 blend weights do not fit one vertex element";
+            return layout;
+        }
         if (weights > 0) add(static_cast<DeclType>(weights - 1), kUsageBlendWeight, 0);
         if (last_beta)
             add((fvf & kFvfLastBetaUByte4) ? DeclType::UBYTE4 : DeclType::D3DCOLOR, kUsageBlendIndices, 0);

@@ -61,6 +61,11 @@ TEST(FvfLayout, RefusesWhatIsNotAnFvf) {
     EXPECT_NE(fvf_layout(0x4004).error, "");          // position bits of no D3DFVF position type
     EXPECT_NE(fvf_layout(0x002 | 0x1000).error, "");  // LASTBETA without XYZBn
     EXPECT_NE(fvf_layout(0x00A | 0x1000 | 0x8000).error, "");
+    // XYZB5 holds 5 betas: 4 weights and the indices with LASTBETA, refused without.
+    EXPECT_NE(fvf_layout(0x00E).error, "");
+    EXPECT_EQ(fvf_layout(0x00E | 0x8000).elements,
+              (std::vector<VertexElement>{element(0, F3, kPosition), element(12, F4, kBlendWeight),
+                                          element(28, Color, kBlendIndices)}));
     EXPECT_NE(fvf_layout(0x002 | 0x2000).error, "");  // a bit D3DFVF does not define
     EXPECT_EQ(fvf_layout(0x002 | 0x0800).stride, 12u + 8 * 8);  // TEX8, the most
 }
