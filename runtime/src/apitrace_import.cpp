@@ -509,26 +509,52 @@ private:
             const uint32_t id = u32(c, rs ? "State" : "Type");
             const StateInfo* state = rs ? find_render_state(id) : find_sampler_state(id);
             if (!state) throw Skip{std::string(rs ? "render" : "sampler") + " state " + std::to_string(id) + " is not one sm2emu has"};
-            const uint32_t value = dword(c, "Value");
-            cs::Value v;
-            switch (state->kind) {
-            case StateValueKind::Enum: {
-                const auto n = enum_name(state->family, value);
-                if (n.empty()) throw Skip{std::string(state->name) + " value " + std::to_string(value) + " has no name in sm2emu"};
-                v = ident(n);
-                break;
-            }
-            case StateValueKind::Bool: v = ident(value ? "TRUE" : "FALSE"); break;
-            case StateValueKind::Float: v = real(std::bit_cast<float>(value)); break;
-            case StateValueKind::Color:
-            case StateValueKind::Bits: v = integer(value, true); break;
-            case StateValueKind::Integer: v = integer(value); break;
-            }
+            cs::Value v = state_value(*state, dword(c, "Value"));
             if (rs) {
                 emit("SetRenderState", {ident(state->name), std::move(v)});
             } else {
                 emit("SetSamplerState", {integer(u32(c, "Sampler")), ident(state->name), std::move(v)});
             }
+            return true;
+        }
+        if (m == "SetFVF") {
+            emit("SetFVF", {flags(EnumFamily::Fvf, u32(c, "FVF"))});
+            return true;
+        }
+        if (m == "SetTransform" || m == "MultiplyTransform") {
+            const uint32_t state = u32(c, "State");
+            const std::string name = transform_state_name(state);
+            if (name.empty()) throw Skip{"transform state " + std::to_string(state) + " is not one D3D9 has"};
+            emit(std::string(m), {ident(name), matrix(deref(c, "pMatrix"))});
+            return true;
+        }
+        if (m == "SetMaterial") {
+            const Value& material = deref(c, "pMaterial");
+            emit("SetMaterial", {color(material, "Diffuse"), color(material, "Ambient"), color(material, "Specular"),
+                                 color(material, "Emissive"), real(member_f(material, "Power"))});
+            return true;
+        }
+        if (m == "SetLight") {
+            const Value& light = deref(c, "pLight");
+            const auto type = enum_name(EnumFamily::LightType, static_cast<uint32_t>(member(light, "Type")));
+            if (type.empty()) throw Skip{"light type " + std::to_string(member(light, "Type")) + " is not one D3D9 has"};
+            std::vector<cs::Value> args{integer(u32(c, "Index")), ident(type), color(light, "Diffuse"),
+                                        color(light, "Specular"), color(light, "Ambient"), vector(light, "Position"),
+                                        vector(light, "Direction")};
+            for (const char* field : {"Range", "Falloff", "Attenuation0", "Attenuation1", "Attenuation2", "Theta", "Phi"})
+                args.push_back(real(member_f(light, field)));
+            emit("SetLight", std::move(args));
+            return true;
+        }
+        if (m == "LightEnable") {
+            emit("LightEnable", {integer(u32(c, "Index")), ident(num(c, "Enable") ? "TRUE" : "FALSE")});
+            return true;
+        }
+        if (m == "SetTextureStageState") {
+            const uint32_t id = u32(c, "Type");
+            const StateInfo* state = find_texture_stage_state(id);
+            if (!state) throw Skip{"texture stage state " + std::to_string(id) + " is not one D3D9 has"};
+            emit("SetTextureStageState", {integer(u32(c, "Stage")), ident(state->name), state_value(*state, dword(c, "Value"))});
             return true;
         }
         if (m == "SetTexture") {
@@ -632,6 +658,64 @@ private:
             return true;
         }
         return false;
+    }
+
+    // A state's DWORD as the stream writes it: names for enums, bools and bit families, floats,
+    // hex colours and masks, plain numbers.
+    static cs::Value state_value(const StateInfo& state, uint32_t value) {
+        switch (state.kind) {
+        case StateValueKind::Enum: {
+            const auto n = enum_name(state.family, value);
+            if (n.empty()) throw Skip{std::string(state.name) + " value " + std::to_string(value) + " has no name in sm2emu"};
+            return ident(n);
+        }
+        case StateValueKind::Bool: return ident(value ? "TRUE" : "FALSE");
+        case StateValueKind::Float: return real(std::bit_cast<float>(value));
+        case StateValueKind::Bits:
+            // Texture-stage flag words as names; masks (COLORWRITEENABLE included) in hex.
+            if (state.family != EnumFamily::Bool && state.family != EnumFamily::ColorWrite) return flags(state.family, value);
+            return integer(value, true);
+        case StateValueKind::Color: return integer(value, true);
+        case StateValueKind::Integer: return integer(value);
+        }
+        return integer(value);
+    }
+    // NAME, { NAME NAME 1 }, or the number when no name covers it (d3d9_names.h flag_names).
+    static cs::Value flags(EnumFamily family, uint32_t value) {
+        std::vector<cs::Value> items;
+        for (const std::string& name : flag_names(family, value)) {
+            if (name[0] >= '0' && name[0] <= '9') items.push_back(integer(std::stoll(name)));
+            else items.push_back(ident(name));
+        }
+        if (items.size() == 1) return std::move(items[0]);
+        return tuple(std::move(items));
+    }
+    // A D3DMATRIX ({m = {{...} x4}}) as an f32 blob, row by row.
+    static cs::Value matrix(const Value& m) {
+        const Value* rows = m.member("m");
+        if (!rows) throw Skip{"the matrix has no member m"};
+        std::vector<float> values;
+        for (const Value& row : rows->items) {
+            if (row.kind == Value::Kind::Array)
+                for (const Value& x : row.items) values.push_back(f32(x, "a matrix element"));
+            else
+                values.push_back(f32(row, "a matrix element"));
+        }
+        if (values.size() != 16) throw Skip{"the matrix has " + std::to_string(values.size()) + " elements, not 16"};
+        std::vector<std::byte> bytes(values.size() * sizeof(float));
+        std::memcpy(bytes.data(), values.data(), bytes.size());
+        return blob(std::move(bytes), cs::BlobType::F32);
+    }
+    // A D3DCOLORVALUE / D3DVECTOR member as { r g b a } / { x y z }.
+    static cs::Value color(const Value& s, std::string_view name) {
+        const Value* v = s.member(name);
+        if (!v) throw Skip{"member " + std::string(name) + " is missing"};
+        return tuple({real(member_f(*v, "r")), real(member_f(*v, "g")), real(member_f(*v, "b")), real(member_f(*v, "a"))});
+    }
+    static cs::Value vector(const Value& s, std::string_view name) {
+        const Value* v = s.member(name);
+        if (!v) throw Skip{"member " + std::string(name) + " is missing"};
+        return tuple({real(member_f(*v, "x")), real(member_f(*v, "y")), real(member_f(*v, "z"))});
     }
 
     // TARGET, { TARGET STENCIL }, or the number when a bit has no name.

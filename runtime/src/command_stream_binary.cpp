@@ -9,7 +9,7 @@ namespace sm2::runtime::cs {
 namespace {
 
 // Binary ids are positions in this list plus kFirstCallId: append only, never reorder.
-constexpr std::array<std::string_view, 60> kCallNames = {
+constexpr std::array<std::string_view, 67> kCallNames = {
     "CreateDevice", "CreateVertexBuffer", "CreateIndexBuffer", "CreateTexture",
     "CreateCubeTexture", "CreateVolumeTexture", "CreateRenderTarget",
     "CreateDepthStencilSurface", "CreateVertexDeclaration", "CreateVertexShader",
@@ -24,6 +24,8 @@ constexpr std::array<std::string_view, 60> kCallNames = {
     "Present", "SaveSurface", "SetDeviceLimits", "ColorFill", "UpdateSurface", "UpdateTexture",
     "GetRenderTargetData", "CreateOffscreenPlainSurface", "SetSoftwareVertexProcessing", "SetNPatchMode",
     "CreateStateBlock", "BeginStateBlock", "EndStateBlock", "Capture", "Apply", "SetGammaRamp",
+    "SetFVF", "SetTransform", "MultiplyTransform", "SetMaterial", "SetLight", "LightEnable",
+    "SetTextureStageState",
 };
 
 constexpr uint16_t kCommentId = 0;

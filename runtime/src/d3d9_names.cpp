@@ -19,6 +19,7 @@ struct Family {
     EnumFamily family;
     std::string_view prefix;
     std::span<const Name> names;
+    std::span<const uint32_t> fields = {};
 };
 
 constexpr Name kPrimitiveTypes[] = {{1, "POINTLIST"}, {2, "LINELIST"}, {3, "LINESTRIP"},
@@ -60,6 +61,52 @@ constexpr Name kPools[] = {{0, "DEFAULT"}, {1, "MANAGED"}, {2, "SYSTEMMEM"}, {3,
 constexpr Name kStateBlockTypes[] = {{1, "ALL"}, {2, "PIXELSTATE"}, {3, "VERTEXSTATE"}};
 constexpr Name kCubeFaces[] = {{0, "POSITIVE_X"}, {1, "NEGATIVE_X"}, {2, "POSITIVE_Y"},
                                {3, "NEGATIVE_Y"}, {4, "POSITIVE_Z"}, {5, "NEGATIVE_Z"}};
+
+constexpr Name kTransformStates[] = {
+    {2, "VIEW"}, {3, "PROJECTION"}, {16, "TEXTURE0"}, {17, "TEXTURE1"}, {18, "TEXTURE2"}, {19, "TEXTURE3"},
+    {20, "TEXTURE4"}, {21, "TEXTURE5"}, {22, "TEXTURE6"}, {23, "TEXTURE7"},
+    {256, "WORLD"}, {257, "WORLD1"}, {258, "WORLD2"}, {259, "WORLD3"}};
+constexpr Name kLightTypes[] = {{1, "POINT"}, {2, "SPOT"}, {3, "DIRECTIONAL"}};
+constexpr Name kTextureOps[] = {
+    {1, "DISABLE"}, {2, "SELECTARG1"}, {3, "SELECTARG2"}, {4, "MODULATE"},
+    {5, "MODULATE2X"}, {6, "MODULATE4X"}, {7, "ADD"}, {8, "ADDSIGNED"},
+    {9, "ADDSIGNED2X"}, {10, "SUBTRACT"}, {11, "ADDSMOOTH"}, {12, "BLENDDIFFUSEALPHA"},
+    {13, "BLENDTEXTUREALPHA"}, {14, "BLENDFACTORALPHA"}, {15, "BLENDTEXTUREALPHAPM"}, {16, "BLENDCURRENTALPHA"},
+    {17, "PREMODULATE"}, {18, "MODULATEALPHA_ADDCOLOR"}, {19, "MODULATECOLOR_ADDALPHA"}, {20, "MODULATEINVALPHA_ADDCOLOR"},
+    {21, "MODULATEINVCOLOR_ADDALPHA"}, {22, "BUMPENVMAP"}, {23, "BUMPENVMAPLUMINANCE"}, {24, "DOTPRODUCT3"},
+    {25, "MULTIPLYADD"}, {26, "LERP"},
+};
+constexpr Name kTextureArgs[] = {{0, "DIFFUSE"}, {1, "CURRENT"}, {2, "TEXTURE"}, {3, "TFACTOR"}, {4, "SPECULAR"},
+                                 {5, "TEMP"}, {6, "CONSTANT"}, {0x10, "COMPLEMENT"}, {0x20, "ALPHAREPLICATE"}};
+constexpr Name kTexCoordIndexes[] = {{0, "PASSTHRU"}, {0x10000, "CAMERASPACENORMAL"}, {0x20000, "CAMERASPACEPOSITION"},
+                                     {0x30000, "CAMERASPACEREFLECTIONVECTOR"}, {0x40000, "SPHEREMAP"}};
+constexpr Name kTextureTransforms[] = {{0, "DISABLE"}, {1, "COUNT1"}, {2, "COUNT2"}, {3, "COUNT3"}, {4, "COUNT4"},
+                                       {0x100, "PROJECTED"}};
+// D3DFVF_TEXCOORDSIZEn(k) is written TEXCOORDSIZEn_k.
+constexpr Name kFvfs[] = {
+    {0x002, "XYZ"}, {0x004, "XYZRHW"}, {0x006, "XYZB1"}, {0x008, "XYZB2"},
+    {0x00A, "XYZB3"}, {0x00C, "XYZB4"}, {0x00E, "XYZB5"}, {0x4002, "XYZW"},
+    {0x010, "NORMAL"}, {0x020, "PSIZE"}, {0x040, "DIFFUSE"}, {0x080, "SPECULAR"},
+    {0x0, "TEX0"}, {0x100, "TEX1"}, {0x200, "TEX2"}, {0x300, "TEX3"},
+    {0x400, "TEX4"}, {0x500, "TEX5"}, {0x600, "TEX6"}, {0x700, "TEX7"},
+    {0x800, "TEX8"}, {0x1000, "LASTBETA_UBYTE4"}, {0x8000, "LASTBETA_D3DCOLOR"}, {0x30000, "TEXCOORDSIZE1_0"},
+    {0x0, "TEXCOORDSIZE2_0"}, {0x10000, "TEXCOORDSIZE3_0"}, {0x20000, "TEXCOORDSIZE4_0"}, {0xC0000, "TEXCOORDSIZE1_1"},
+    {0x0, "TEXCOORDSIZE2_1"}, {0x40000, "TEXCOORDSIZE3_1"}, {0x80000, "TEXCOORDSIZE4_1"}, {0x300000, "TEXCOORDSIZE1_2"},
+    {0x0, "TEXCOORDSIZE2_2"}, {0x100000, "TEXCOORDSIZE3_2"}, {0x200000, "TEXCOORDSIZE4_2"}, {0xC00000, "TEXCOORDSIZE1_3"},
+    {0x0, "TEXCOORDSIZE2_3"}, {0x400000, "TEXCOORDSIZE3_3"}, {0x800000, "TEXCOORDSIZE4_3"}, {0x3000000, "TEXCOORDSIZE1_4"},
+    {0x0, "TEXCOORDSIZE2_4"}, {0x1000000, "TEXCOORDSIZE3_4"}, {0x2000000, "TEXCOORDSIZE4_4"}, {0xC000000, "TEXCOORDSIZE1_5"},
+    {0x0, "TEXCOORDSIZE2_5"}, {0x4000000, "TEXCOORDSIZE3_5"}, {0x8000000, "TEXCOORDSIZE4_5"}, {0x30000000, "TEXCOORDSIZE1_6"},
+    {0x0, "TEXCOORDSIZE2_6"}, {0x10000000, "TEXCOORDSIZE3_6"}, {0x20000000, "TEXCOORDSIZE4_6"}, {0xC0000000, "TEXCOORDSIZE1_7"},
+    {0x0, "TEXCOORDSIZE2_7"}, {0x40000000, "TEXCOORDSIZE3_7"}, {0x80000000, "TEXCOORDSIZE4_7"},
+};
+
+// Fields of the bit families: a name whose value lies inside a field is one choice of it (D3DTA's
+// selector, the FVF's position type); every other name is a single bit.
+constexpr uint32_t kTextureArgFields[] = {0xF};
+constexpr uint32_t kTexCoordIndexFields[] = {0xFFFF0000u};
+constexpr uint32_t kTextureTransformFields[] = {0xFF};
+constexpr uint32_t kFvfFields[] = {0x400E, 0xF00, 3u << 16, 3u << 18, 3u << 20, 3u << 22,
+                                   3u << 24, 3u << 26, 3u << 28, 3u << 30};
 
 // clang-format off
 constexpr StateInfo kRenderStates[] = {
@@ -129,6 +176,18 @@ constexpr StateInfo kSamplerStates[] = {
     {11, "SRGBTEXTURE", K::Bool, F::Bool},        {12, "ELEMENTINDEX", K::Integer, F::Bool},
     {13, "DMAPOFFSET", K::Integer, F::Bool},
 };
+
+constexpr StateInfo kTextureStageStates[] = {
+    {1, "COLOROP", K::Enum, F::TextureOp},           {2, "COLORARG1", K::Bits, F::TextureArg},
+    {3, "COLORARG2", K::Bits, F::TextureArg},        {4, "ALPHAOP", K::Enum, F::TextureOp},
+    {5, "ALPHAARG1", K::Bits, F::TextureArg},        {6, "ALPHAARG2", K::Bits, F::TextureArg},
+    {7, "BUMPENVMAT00", K::Float, F::Bool},          {8, "BUMPENVMAT01", K::Float, F::Bool},
+    {9, "BUMPENVMAT10", K::Float, F::Bool},          {10, "BUMPENVMAT11", K::Float, F::Bool},
+    {11, "TEXCOORDINDEX", K::Bits, F::TexCoordIndex}, {22, "BUMPENVLSCALE", K::Float, F::Bool},
+    {23, "BUMPENVLOFFSET", K::Float, F::Bool},       {24, "TEXTURETRANSFORMFLAGS", K::Bits, F::TextureTransform},
+    {26, "COLORARG0", K::Bits, F::TextureArg},       {27, "ALPHAARG0", K::Bits, F::TextureArg},
+    {28, "RESULTARG", K::Bits, F::TextureArg},       {32, "CONSTANT", K::Color, F::Bool},
+};
 // clang-format on
 
 constexpr std::array<Name, 0> kNoNames{};
@@ -157,6 +216,14 @@ const Family kFamilies[] = {
     {F::Bool, "", kBools},
     {F::Pool, "D3DPOOL_", kPools},
     {F::StateBlockType, "D3DSBT_", kStateBlockTypes},
+    {F::TextureStageState, "D3DTSS_", kNoNames},
+    {F::TransformState, "D3DTS_", kTransformStates},
+    {F::LightType, "D3DLIGHT_", kLightTypes},
+    {F::TextureOp, "D3DTOP_", kTextureOps},
+    {F::TextureArg, "D3DTA_", kTextureArgs, kTextureArgFields},
+    {F::TexCoordIndex, "D3DTSS_TCI_", kTexCoordIndexes, kTexCoordIndexFields},
+    {F::TextureTransform, "D3DTTFF_", kTextureTransforms, kTextureTransformFields},
+    {F::Fvf, "D3DFVF_", kFvfs, kFvfFields},
 };
 
 const Family& family_of(EnumFamily family) {
@@ -196,6 +263,83 @@ const StateInfo* find_sampler_state(std::string_view name) {
     return find_state(kSamplerStates, "D3DSAMP_", name);
 }
 const StateInfo* find_sampler_state(uint32_t id) { return find_state(kSamplerStates, id); }
+std::span<const StateInfo> texture_stage_states() { return kTextureStageStates; }
+const StateInfo* find_texture_stage_state(std::string_view name) {
+    return find_state(kTextureStageStates, "D3DTSS_", name);
+}
+const StateInfo* find_texture_stage_state(uint32_t id) { return find_state(kTextureStageStates, id); }
+
+namespace {
+constexpr std::string_view kWorldMatrix = "WORLDMATRIX";
+constexpr uint32_t kWorldMatrixBase = 256, kWorldMatrixCount = 256;
+}  // namespace
+
+std::optional<uint32_t> transform_state_value(std::string_view name) {
+    name = strip(name, "D3DTS_");
+    for (const Name& n : kTransformStates)
+        if (n.name == name) return n.value;
+    if (name.substr(0, kWorldMatrix.size()) != kWorldMatrix) return std::nullopt;
+    const std::string_view digits = name.substr(kWorldMatrix.size());
+    if (digits.empty() || digits.size() > 3 || (digits.size() > 1 && digits[0] == '0')) return std::nullopt;
+    uint32_t index = 0;
+    for (char c : digits) {
+        if (c < '0' || c > '9') return std::nullopt;
+        index = index * 10 + static_cast<uint32_t>(c - '0');
+    }
+    if (index >= kWorldMatrixCount) return std::nullopt;
+    return kWorldMatrixBase + index;
+}
+
+std::string transform_state_name(uint32_t value) {
+    for (const Name& n : kTransformStates)
+        if (n.value == value) return std::string(n.name);
+    if (value >= kWorldMatrixBase && value < kWorldMatrixBase + kWorldMatrixCount)
+        return std::string(kWorldMatrix) + std::to_string(value - kWorldMatrixBase);
+    return {};
+}
+
+std::vector<std::string_view> enum_names(EnumFamily family) {
+    std::vector<std::string_view> names;
+    std::span<const StateInfo> states;
+    if (family == EnumFamily::RenderState) states = kRenderStates;
+    if (family == EnumFamily::SamplerState) states = kSamplerStates;
+    if (family == EnumFamily::TextureStageState) states = kTextureStageStates;
+    for (const StateInfo& s : states) names.push_back(s.name);
+    for (const Name& n : family_of(family).names) names.push_back(n.name);
+    return names;
+}
+
+std::vector<std::string> flag_names(EnumFamily family, uint32_t value) {
+    const Family& f = family_of(family);
+    std::vector<std::string> names;
+    uint32_t covered = 0, all_fields = 0;
+    for (const uint32_t field : f.fields) all_fields |= field;
+    for (const uint32_t field : f.fields) {
+        covered |= field;
+        const uint32_t choice = value & field;
+        // A family of one field names its zero choice (DIFFUSE, PASSTHRU, DISABLE); the FVF's
+        // zero choices (TEX0, TEXCOORDSIZE2_k) are the absence of bits and are left out.
+        if (choice == 0 && f.fields.size() > 1) continue;
+        const Name* found = nullptr;
+        for (const Name& n : f.names)
+            if (n.value == choice && (n.value & ~field) == 0) {
+                found = &n;
+                break;
+            }
+        if (found) names.emplace_back(found->name);
+        else covered &= ~field;  // no name: left in the number
+    }
+    uint32_t rest = value & ~covered;
+    for (const Name& n : f.names) {
+        const bool single_bit = n.value != 0 && (n.value & (n.value - 1)) == 0;
+        if (single_bit && (n.value & all_fields) == 0 && (rest & n.value) != 0) {
+            names.emplace_back(n.name);
+            rest &= ~n.value;
+        }
+    }
+    if (rest != 0 || names.empty()) names.push_back(std::to_string(rest));
+    return names;
+}
 
 std::optional<uint32_t> enum_value(EnumFamily family, std::string_view name) {
     if (family == EnumFamily::RenderState) {
@@ -206,6 +350,11 @@ std::optional<uint32_t> enum_value(EnumFamily family, std::string_view name) {
         const StateInfo* s = find_sampler_state(name);
         return s ? std::optional<uint32_t>(s->id) : std::nullopt;
     }
+    if (family == EnumFamily::TextureStageState) {
+        const StateInfo* s = find_texture_stage_state(name);
+        return s ? std::optional<uint32_t>(s->id) : std::nullopt;
+    }
+    if (family == EnumFamily::TransformState) return transform_state_value(name);
     const Family& f = family_of(family);
     name = strip(name, f.prefix);
     for (const Name& n : f.names)
@@ -220,6 +369,10 @@ std::string_view enum_name(EnumFamily family, uint32_t value) {
     }
     if (family == EnumFamily::SamplerState) {
         const StateInfo* s = find_sampler_state(value);
+        return s ? s->name : std::string_view{};
+    }
+    if (family == EnumFamily::TextureStageState) {
+        const StateInfo* s = find_texture_stage_state(value);
         return s ? s->name : std::string_view{};
     }
     for (const Name& n : family_of(family).names)

@@ -552,7 +552,10 @@ CallResult bind_resource(const std::shared_ptr<Device::Resource>& found, const s
 
 CallResult Device::set_vertex_declaration(const std::string& name) {
     select_binding([](StateSelection& s, uint32_t) { s.declaration = true; }, 0);
-    return bind_resource(find(name), name, "SetVertexDeclaration", Resource::Kind::Declaration, "vertex declaration", declaration_);
+    CallResult bound = bind_resource(find(name), name, "SetVertexDeclaration", Resource::Kind::Declaration,
+                                     "vertex declaration", declaration_);
+    if (bound.ok) fixed_function_.fvf = 0;  // GetFVF answers 0 after a declaration
+    return bound;
 }
 CallResult Device::set_vertex_shader(const std::string& name) {
     select_binding([](StateSelection& s, uint32_t) { s.vertex_shader = true; }, 0);
@@ -742,6 +745,69 @@ CallResult Device::set_clip_plane(uint32_t index, const Vec4& plane) {
     if (index >= kMaxUserClipPlanes) return CallResult::fail("SetClipPlane: index " + std::to_string(index) + " out of range");
     clip_planes_[index] = plane;
     select_binding([](StateSelection& s, uint32_t i) { s.clip_planes.set(i); }, index);
+    return {};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Fixed-function state
+
+CallResult Device::set_fvf(uint32_t fvf) {
+    if (fvf == 0) {
+        // D3D9 accepts SetFVF(0) and leaves the declaration as it was.
+        fixed_function_.fvf = 0;
+        return {};
+    }
+    FvfLayout layout = fvf_layout(fvf);
+    if (!layout.error.empty()) return CallResult::fail("SetFVF: " + layout.error);
+    auto declaration = std::make_shared<Resource>();
+    declaration->kind = Resource::Kind::Declaration;
+    declaration->elements = std::move(layout.elements);
+    declaration_ = std::move(declaration);
+    fixed_function_.fvf = fvf;
+    return {};
+}
+
+namespace {
+
+std::string transform_refusal(const char* call, uint32_t state) {
+    return std::string(call) + ": transform state " + std::to_string(state) +
+           " is not VIEW, PROJECTION, TEXTURE0..7 or WORLDMATRIX(0..255)";
+}
+
+}  // namespace
+
+CallResult Device::set_transform(uint32_t state, const Matrix4& matrix) {
+    Matrix4* target = fixed_function_.transform(state);
+    if (!target) return CallResult::fail(transform_refusal("SetTransform", state));
+    *target = matrix;
+    return {};
+}
+
+CallResult Device::multiply_transform(uint32_t state, const Matrix4& matrix) {
+    Matrix4* target = fixed_function_.transform(state);
+    if (!target) return CallResult::fail(transform_refusal("MultiplyTransform", state));
+    *target = multiply(matrix, *target);
+    return {};
+}
+
+CallResult Device::set_material(const Material& material) {
+    fixed_function_.material = material;
+    return {};
+}
+
+CallResult Device::set_light(uint32_t index, const Light& light) {
+    if (auto refused = fixed_function_.set_light(index, light)) return CallResult::fail("SetLight: " + *refused);
+    return {};
+}
+
+CallResult Device::light_enable(uint32_t index, bool enable) {
+    if (auto refused = fixed_function_.light_enable(index, enable)) return CallResult::fail("LightEnable: " + *refused);
+    return {};
+}
+
+CallResult Device::set_texture_stage_state(uint32_t stage, uint32_t type, uint32_t value) {
+    if (auto refused = fixed_function_.set_texture_stage_state(stage, type, value))
+        return CallResult::fail("SetTextureStageState: " + *refused);
     return {};
 }
 

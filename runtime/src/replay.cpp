@@ -58,12 +58,10 @@ std::string describe(const Value& v) {
     }
 }
 
-// Every name of an enum family, for "expected one of" messages (values of d3d9types.h are small).
+// Every name of an enum family, for "expected one of" messages.
 std::string family_names(EnumFamily family) {
     std::string names;
-    for (uint32_t value = 0; value < 64; ++value) {
-        const std::string_view name = enum_name(family, value);
-        if (name.empty()) continue;
+    for (const std::string_view name : enum_names(family)) {
         if (!names.empty()) names += ", ";
         names += name;
     }
@@ -160,7 +158,35 @@ private:
     std::span<const Value> values_;
 };
 
-// The DWORD of a render or sampler state value, typed by the state (docs/command-stream.md).
+// A flag word of a bit family: a number, a name, or a tuple of names and numbers, OR-ed
+// (COLORWRITEENABLE { RED GREEN }, COLORARG1 { TEXTURE COMPLEMENT }, SetFVF { XYZ NORMAL TEX1 }).
+uint32_t flag_word(const Args& args, size_t i, const std::string& what, EnumFamily family) {
+    const Value& v = args.at(i);
+    if (v.kind == Kind::Integer) return args.u32(i, what);
+    if (v.kind == Kind::Identifier) return args.enumeration(i, what, family);
+    if (v.kind != Kind::Tuple) args.wrong_kind(i, what, "a name, a tuple of names or a number");
+    uint32_t bits = 0;
+    for (size_t k = 0; k < v.items.size(); ++k) {
+        const Value& item = v.items[k];
+        const std::string where = "item " + std::to_string(k + 1) + ": ";
+        if (item.kind == Kind::Integer) {
+            if (item.integer < 0 || item.integer > 0xFFFFFFFFll)
+                args.fail(i, what, where + std::to_string(item.integer) + " is not an unsigned 32-bit integer");
+            bits |= static_cast<uint32_t>(item.integer);
+        } else if (item.kind == Kind::Identifier) {
+            const auto value = enum_value(family, item.text);
+            if (!value)
+                args.fail(i, what, where + "unknown name '" + item.text + "' (expected one of " + family_names(family) + ")");
+            bits |= *value;
+        } else {
+            args.fail(i, what, where + "expected a name or a number, got " + describe(item));
+        }
+    }
+    return bits;
+}
+
+// The DWORD of a render, sampler or texture stage state value, typed by the state
+// (docs/command-stream.md).
 uint32_t state_value(const Args& args, size_t i, const StateInfo& state) {
     const Value& v = args.at(i);
     const std::string what = std::string(state.name) + " value";
@@ -175,14 +201,7 @@ uint32_t state_value(const Args& args, size_t i, const StateInfo& state) {
     case StateValueKind::Float:
         return std::bit_cast<uint32_t>(args.f32(i, what));
     case StateValueKind::Bits:
-        if (state.family == EnumFamily::ColorWrite && v.kind == Kind::Identifier)
-            return args.enumeration(i, what, state.family);
-        if (state.family == EnumFamily::ColorWrite && v.kind == Kind::Tuple) {
-            uint32_t bits = 0;
-            const Args flags(v.items);
-            for (size_t k = 0; k < flags.size(); ++k) bits |= flags.enumeration(k, what, state.family);
-            return bits;
-        }
+        if (state.family != EnumFamily::Bool) return flag_word(args, i, what, state.family);
         return args.u32(i, what);
     case StateValueKind::Color:
     case StateValueKind::Integer:
@@ -244,6 +263,45 @@ VertexElement vertex_element(const Args& args, size_t i) {
         message.replace(0, std::string_view("argument").size(), "field");
         args.fail(i, what, message);
     }
+}
+
+// A D3DMATRIX: an f32 blob of 16 floats, row by row.
+Matrix4 matrix(const Args& args, size_t i) {
+    const std::vector<float> values = args.words<float>(i, "matrix");
+    if (values.size() != 16) args.fail(i, "matrix", std::to_string(values.size()) + " floats, a matrix has 16");
+    Matrix4 m;
+    std::copy(values.begin(), values.end(), m.begin());
+    return m;
+}
+
+// The numbers of a tuple of exactly `count` of them ({ r g b a }, { x y z }).
+std::vector<float> number_tuple(const Args& args, size_t i, std::string_view what, size_t count,
+                                std::string_view fields) {
+    const Value& v = args.at(i);
+    if (v.kind != Kind::Tuple) args.wrong_kind(i, what, "a tuple { " + std::string(fields) + " }");
+    if (v.items.size() != count)
+        args.fail(i, what, "expected " + std::to_string(count) + " numbers { " + std::string(fields) + " }, got " +
+                               std::to_string(v.items.size()));
+    const Args items(v.items);
+    std::vector<float> out;
+    for (size_t k = 0; k < count; ++k) out.push_back(items.f32(k, what));
+    return out;
+}
+ColorValue color_value(const Args& args, size_t i, std::string_view what) {
+    const auto c = number_tuple(args, i, what, 4, "r g b a");
+    return ColorValue{c[0], c[1], c[2], c[3]};
+}
+Vector3 vector3(const Args& args, size_t i, std::string_view what) {
+    const auto c = number_tuple(args, i, what, 3, "x y z");
+    return Vector3{c[0], c[1], c[2]};
+}
+
+uint32_t transform_state(const Args& args, size_t i) {
+    const std::string& name = args.identifier(i, "transform state");
+    if (auto value = transform_state_value(name)) return *value;
+    args.fail(i, "transform state",
+              "unknown name '" + name + "' (expected one of VIEW, PROJECTION, TEXTURE0..TEXTURE7, WORLD, WORLD1..WORLD3, "
+              "WORLDMATRIX0..WORLDMATRIX255)");
 }
 
 bool looks_like_bytecode(std::span<const std::byte> bytes) {
@@ -700,6 +758,49 @@ const CallSpec kCalls[] = {
              if (auto r = c.device.set_max_instruction_slots(a.u32(i + 1, "INSTRUCTIONSLOTS")); !r.ok) return r;
          }
          return CallResult::success();
+     }},
+    {"SetFVF", 1, 1, "fvf (a number, a name or a tuple: { XYZ NORMAL TEX1 })",
+     [](Context& c, const Args& a) { return c.device.set_fvf(flag_word(a, 0, "fvf", EnumFamily::Fvf)); }},
+    {"SetTransform", 2, 2, "STATE f32[ 16 floats ]",
+     [](Context& c, const Args& a) { return c.device.set_transform(transform_state(a, 0), matrix(a, 1)); }},
+    {"MultiplyTransform", 2, 2, "STATE f32[ 16 floats ]",
+     [](Context& c, const Args& a) { return c.device.multiply_transform(transform_state(a, 0), matrix(a, 1)); }},
+    {"SetMaterial", 5, 5, "{ diffuse r g b a } { ambient } { specular } { emissive } power",
+     [](Context& c, const Args& a) {
+         return c.device.set_material(Material{color_value(a, 0, "diffuse"), color_value(a, 1, "ambient"),
+                                               color_value(a, 2, "specular"), color_value(a, 3, "emissive"),
+                                               a.f32(4, "power")});
+     }},
+    {"SetLight", 14, 14,
+     "index POINT|SPOT|DIRECTIONAL { diffuse } { specular } { ambient } { position x y z } { direction x y z } "
+     "range falloff attenuation0 attenuation1 attenuation2 theta phi",
+     [](Context& c, const Args& a) {
+         Light light;
+         light.type = static_cast<LightType>(a.enumeration(1, "type", EnumFamily::LightType));
+         light.diffuse = color_value(a, 2, "diffuse");
+         light.specular = color_value(a, 3, "specular");
+         light.ambient = color_value(a, 4, "ambient");
+         light.position = vector3(a, 5, "position");
+         light.direction = vector3(a, 6, "direction");
+         light.range = a.f32(7, "range");
+         light.falloff = a.f32(8, "falloff");
+         light.attenuation0 = a.f32(9, "attenuation0");
+         light.attenuation1 = a.f32(10, "attenuation1");
+         light.attenuation2 = a.f32(11, "attenuation2");
+         light.theta = a.f32(12, "theta");
+         light.phi = a.f32(13, "phi");
+         return c.device.set_light(a.u32(0, "index"), light);
+     }},
+    {"LightEnable", 2, 2, "index TRUE|FALSE",
+     [](Context& c, const Args& a) {
+         return c.device.light_enable(a.u32(0, "index"), a.enumeration(1, "enable", EnumFamily::Bool) != 0);
+     }},
+    {"SetTextureStageState", 3, 3, "stage STATE value",
+     [](Context& c, const Args& a) {
+         const std::string& name = a.identifier(1, "state");
+         const StateInfo* state = find_texture_stage_state(name);
+         if (!state) a.fail(1, "state", "unknown texture stage state '" + name + "'");
+         return c.device.set_texture_stage_state(a.u32(0, "stage"), state->id, state_value(a, 2, *state));
      }},
     {"SaveSurface", 2, 2, "surface \"file\"",
      [](Context& c, const Args& a) { return c.device.save_surface(a.identifier(0, "surface"), a.string(1, "file")); }},

@@ -124,20 +124,17 @@ TEST(ApitraceImport, ShaderSceneImportsEveryCallAndReplays) {
     EXPECT_EQ(cs::to_text(*unpacked.stream), text);
 }
 
-// The other two captures use calls the vocabulary lacks (fixed function): each such kind is
-// reported once, with the number of its first call and how many there were, as the reference
-// dump lists them.
-TEST(ApitraceImport, UnsupportedKindsAreReportedOnceWithTheirFirstCall) {
+// Every call of the three captures is in the stream vocabulary now (device calls, state blocks,
+// fixed-function state): nothing is skipped for its kind.
+TEST(ApitraceImport, EveryCallKindOfTheCapturesIsImported) {
     struct Expect {
         const char* trace;
         uint64_t imported, accepted, skipped;
         std::vector<std::string> kinds;  // skipped for "not in the stream vocabulary yet"
     };
     const Expect cases[] = {
-        {"ff_lit_cube", 91, 26, 58,
-         {"IDirect3DDevice9::SetTransform", "IDirect3DDevice9::SetMaterial", "IDirect3DDevice9::SetLight",
-          "IDirect3DDevice9::LightEnable", "IDirect3DDevice9::SetTextureStageState", "IDirect3DDevice9::SetFVF"}},
-        {"mixed_states", 186, 41, 41, {"IDirect3DDevice9::SetTextureStageState", "IDirect3DDevice9::SetFVF"}},
+        {"ff_lit_cube", 91 + 58, 26, 0, {}},  // the 58 fixed-function calls the dump lists, imported
+        {"mixed_states", 186 + 41, 41, 0, {}},  // its 22 SetFVF and 19 SetTextureStageState calls too
     };
     for (const auto& e : cases) {
         const ImportResult r = import_file(e.trace);
@@ -161,8 +158,54 @@ TEST(ApitraceImport, UnsupportedKindsAreReportedOnceWithTheirFirstCall) {
         }
     }
     const ImportResult r = import_file("mixed_states");
-    EXPECT_NE(r.report.to_string().find("  IDirect3DDevice9::SetFVF: 22 calls skipped from call 65: not in the stream vocabulary yet\n"),
-              std::string::npos) << r.report.to_string();
+    std::map<std::string, ImportReport::Skipped> kinds;
+    for (const auto& k : r.report.skipped_kinds) kinds[k.call] = k;
+    EXPECT_EQ(kinds.count("IDirect3DDevice9::SetFVF"), 0u) << r.report.to_string();
+    EXPECT_EQ(kinds.count("IDirect3DDevice9::SetTextureStageState"), 0u) << r.report.to_string();
+}
+
+// ff_lit_cube: the fixed-function calls become statements with the values of the reference
+// dump; every call but the draws (which need the fixed-function pipeline) replays.
+TEST(ApitraceImport, FixedFunctionCallsOfFfLitCubeAreImported) {
+    const ImportResult r = import_file("ff_lit_cube");
+    ASSERT_FALSE(r.error);
+    EXPECT_EQ(r.report.skipped, 0u) << r.report.to_string();
+    EXPECT_EQ(r.report.imported, 91u + 58u);  // the 58 fixed-function calls the dump lists
+    const auto dump = dump_calls("ff_lit_cube");
+    const auto counts = statement_counts(r.stream);
+    for (const char* name : {"SetTransform", "SetMaterial", "SetLight", "LightEnable", "SetTextureStageState", "SetFVF"})
+        EXPECT_EQ(counts.count(name) ? counts.at(name) : 0, dump.at(std::string("IDirect3DDevice9::") + name).second) << name;
+    const std::string text = cs::to_text(r.stream);
+    for (const char* line : {
+             // 20 SetMaterial(Diffuse 1 1 1 1, Ambient 0.5 0.5 0.5 1, Specular 0.5 0.5 0.5 1, Emissive 0, Power 20)
+             "\nSetMaterial { 1.0 1.0 1.0 1.0 } { 0.5 0.5 0.5 1.0 } { 0.5 0.5 0.5 1.0 } { 0.0 0.0 0.0 0.0 } 20.0\n",
+             // 23 SetLight(1, D3DLIGHT_POINT, Diffuse 0.2 0.4 1 1, Position -2.5 1 -2.5, Range 10, Attenuation0 0.2, Attenuation1 0.15)
+             "\nSetLight 1 POINT { 0.2 0.4 1.0 1.0 } { 0.0 0.0 0.0 0.0 } { 0.0 0.0 0.0 0.0 } { -2.5 1.0 -2.5 } { 0.0 0.0 0.0 } "
+             "10.0 0.0 0.2 0.15 0.0 0.0 0.0\n",
+             "\nLightEnable 0 TRUE\n",                                     // 22
+             "\nSetTextureStageState 0 COLORARG1 DIFFUSE\n",               // 50
+             "\nSetTextureStageState 0 COLOROP MODULATE\n",                // 60
+             "\nSetTextureStageState 0 ALPHAARG1 TEXTURE\n",               // 64
+             "\nSetTextureStageState 1 COLOROP DISABLE\n",                 // 66
+             "\nSetFVF { XYZ DIFFUSE }\n",                                 // 53
+             "\nSetFVF { XYZ TEX1 NORMAL }\n",                             // 68
+         })
+        EXPECT_NE(text.find(line), std::string::npos) << line;
+
+    // On the Device: the 3 draws of each frame are refused (no vertex shader: the fixed-function
+    // pipeline is not emulated yet); nothing else is.
+    Device device;
+    const ReplayResult replayed = replay(device, r.stream);
+    for (const auto& d : replayed.diagnostics)
+        EXPECT_TRUE(d.call == "DrawPrimitive" || d.call == "DrawIndexedPrimitive") << d.to_string();
+    EXPECT_EQ(replayed.diagnostics.size(), 3u * 3u);
+    EXPECT_EQ(device.fixed_function().fvf, 0x112u);
+    EXPECT_EQ(device.fixed_function().enabled_lights, (std::vector<uint32_t>{0, 1}));
+    EXPECT_EQ(device.fixed_function().lights.at(0).direction, (Vector3{-0.5f, -0.6f, 0.7f}));
+    // 18 SetTransform(D3DTS_VIEW, {{1, 0, 0, 0}, {0, 0.9486833, -0.3162278, 0}, {-0, 0.3162278,
+    // 0.9486833, 0}, {-0, -0, 6.324555, 1}}) (the dump prints 7 digits).
+    const Matrix4 view{1, 0, 0, 0, 0, 0.9486833f, -0.3162278f, 0, 0, 0.3162278f, 0.9486833f, 0, 0, 0, 6.324555f, 1};
+    for (size_t i = 0; i < 16; ++i) EXPECT_NEAR(device.fixed_function().view[i], view[i], 1e-6) << i;
 }
 
 // mixed_states' device calls: one statement per call of each kind the reference dump lists
@@ -223,7 +266,9 @@ TEST(ApitraceImport, MixedStatesFramesMatchWineWhereTheyNeedNoFixedFunction) {
     Device device(options);
     const ReplayResult replayed = replay(device, imported.stream);
     for (const auto& d : replayed.diagnostics)
-        EXPECT_EQ(d.call + ": " + d.message, "DrawPrimitiveUP: no vertex declaration is set") << d.to_string();
+        EXPECT_EQ(d.call + ": " + d.message,
+                  "DrawPrimitiveUP: no vertex shader is set (fixed-function vertex processing is not emulated)")
+            << d.to_string();
     ASSERT_EQ(frames.size(), 2u);
 
     // Outward distance of a source texel centre from the triangle (positive: outside).
@@ -313,15 +358,16 @@ TEST(ApitraceImport, StreamedReplayOfATraceEqualsTheImportedStreams) {
     ASSERT_EQ(whole.size(), 2u);
     EXPECT_EQ(direct, whole);
     EXPECT_FALSE(streamed.error);
-    EXPECT_EQ(streamed.import.imported, 186u);
-    EXPECT_EQ(streamed.statements, 186u);
+    EXPECT_EQ(streamed.import.imported, 227u);
+    EXPECT_EQ(streamed.statements, 227u);
     EXPECT_EQ(streamed.refused, 38u);
     ASSERT_EQ(streamed.refused_kinds.size(), 1u);
     EXPECT_EQ(streamed.refused_kinds[0].call, "DrawPrimitiveUP");
     EXPECT_EQ(streamed.refused_kinds[0].first, dump_calls("mixed_states").at("IDirect3DDevice9::DrawPrimitiveUP").first);
     EXPECT_EQ(streamed.refused_kinds[0].count, 38u);
     EXPECT_EQ(streamed.refusals_to_string(),
-              "  DrawPrimitiveUP: 38 calls refused from call 66: D3DERR_INVALIDCALL: no vertex declaration is set\n");
+              "  DrawPrimitiveUP: 38 calls refused from call 66: D3DERR_INVALIDCALL: no vertex shader is set "
+              "(fixed-function vertex processing is not emulated)\n");
 }
 
 // Texture uploads: LockRect/LockBox of whole levels with their memcpy become LockRect/LockBox

@@ -23,6 +23,7 @@
 #include "sm2/isa/program.h"
 #include "sm2/runtime/clipper.h"
 #include "sm2/runtime/depth_stencil.h"
+#include "sm2/runtime/fixed_function.h"
 #include "sm2/runtime/formats.h"
 #include "sm2/runtime/primitive_assembly.h"
 #include "sm2/runtime/render_state.h"
@@ -196,6 +197,18 @@ public:
     CallResult set_scissor_rect(const PixelRect& rect);
     CallResult set_clip_plane(uint32_t index, const Vec4& plane);
 
+    // Fixed-function state (fixed_function.h; draws without a vertex shader do not use it yet).
+    // SetFVF also binds the FVF's vertex layout as the vertex declaration, as D3D9 does, so a
+    // shader draw can read an FVF buffer; SetVertexDeclaration sets the FVF back to 0.
+    CallResult set_fvf(uint32_t fvf);
+    CallResult set_transform(uint32_t state, const Matrix4& matrix);
+    // state = matrix times state (D3D9's order).
+    CallResult multiply_transform(uint32_t state, const Matrix4& matrix);
+    CallResult set_material(const Material& material);
+    CallResult set_light(uint32_t index, const Light& light);
+    CallResult light_enable(uint32_t index, bool enable);
+    CallResult set_texture_stage_state(uint32_t stage, uint32_t type, uint32_t value);
+
     // Frame
     // `rects` (D3DRECTs) empty: the whole viewport; otherwise each rectangle clipped to the
     // viewport (and to the scissor rectangle when SCISSORTESTENABLE is TRUE).
@@ -266,6 +279,7 @@ public:
     [[nodiscard]] const DepthStencilSurface* depth_stencil(const std::string& name) const;
     [[nodiscard]] const RenderState& render_state() const { return render_state_; }
     [[nodiscard]] const Viewport& viewport() const { return viewport_; }
+    [[nodiscard]] const FixedFunctionState& fixed_function() const { return fixed_function_; }
     [[nodiscard]] bool has_resource(const std::string& name) const { return resources_.count(name) != 0; }
     [[nodiscard]] uint32_t frames_presented() const { return frame_; }
     [[nodiscard]] const DrawStatistics& statistics() const { return stats_; }
@@ -324,6 +338,7 @@ private:
     Viewport viewport_{};
     PixelRect scissor_{};
     std::array<Vec4, kMaxUserClipPlanes> clip_planes_{};
+    FixedFunctionState fixed_function_;
     bool in_scene_ = false;
     bool software_vertex_processing_ = false;
     std::vector<uint16_t> gamma_ramp_;  // empty: the identity
