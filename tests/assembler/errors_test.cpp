@@ -221,13 +221,23 @@ TEST(Validation, ViolationsBecomeDiagnostics) {
 }
 
 TEST(Validation, InstructionLocations) {
-    const AssembleResult r = assemble_unvalidated(
-        "ps_2_0\n  mov r0, c0\ndcl t0\n\tdef c0, 1, 1, 1, 1\n");
+    const char* text = "ps_2_0\n  mov r0, c0\ndcl t0\n\tdef c0, 1, 1, 1, 1\n";
+    const AssembleResult r = assemble_unvalidated(text);
     ASSERT_TRUE(r.ok());
     ASSERT_EQ(r.program->instructions.size(), 3u);
-    EXPECT_EQ(r.program->instructions[0].location, (isa::SourceLocation{3, 1}));  // dcl
-    EXPECT_EQ(r.program->instructions[1].location, (isa::SourceLocation{4, 2}));  // def
-    EXPECT_EQ(r.program->instructions[2].location, (isa::SourceLocation{2, 3}));  // mov
+    EXPECT_EQ(r.program->instructions[0].location, (isa::SourceLocation{2, 3}));  // mov
+    EXPECT_EQ(r.program->instructions[1].location, (isa::SourceLocation{3, 1}));  // dcl
+    EXPECT_EQ(r.program->instructions[2].location, (isa::SourceLocation{4, 2}));  // def
+    // Reordered (Wine's order), each statement keeps its own location.
+    AssembleOptions wine;
+    wine.validate = false;
+    wine.wine_order = true;
+    const AssembleResult w = assemble(text, wine);
+    ASSERT_TRUE(w.ok());
+    ASSERT_EQ(w.program->instructions.size(), 3u);
+    EXPECT_EQ(w.program->instructions[0].location, (isa::SourceLocation{3, 1}));  // dcl
+    EXPECT_EQ(w.program->instructions[1].location, (isa::SourceLocation{4, 2}));  // def
+    EXPECT_EQ(w.program->instructions[2].location, (isa::SourceLocation{2, 3}));  // mov
 }
 
 // ---- robustness ------------------------------------------------------------------------
