@@ -138,6 +138,15 @@ TEST(Order, WineOrderMovesDeclarationsAndDefinitionsToTheTop) {
               "FFFF0200 0200001F 80000000 900F0000 0200001F 98000000 A00F0803 0000FFFF");
 }
 
+// `comment` writes a comment token (size in bits 16..30, 0xFFFE below) and the words as given.
+TEST(CommentBlock, WordsAsGivenWhereWritten) {
+    EXPECT_EQ(hex(assemble_tokens("ps_2_0\nmov oC0, c0\nCOMMENT 0xA,\n  0xffffffff\ncomment\n")),
+              "FFFF0200 02000001 800F0800 A0E40000 0002FFFE 0000000A FFFFFFFF 0000FFFE 0000FFFF");
+    // Wine's order moves declarations and definitions, not comment blocks.
+    EXPECT_EQ(hex(assemble_tokens("ps_2_0\ncomment 0x1\ndef c0, 0, 0, 0, 0\n", true)),
+              "FFFF0200 05000051 A00F0000 00000000 00000000 00000000 00000000 0001FFFE 00000001 0000FFFF");
+}
+
 TEST(Version, Forms) {
     EXPECT_EQ(hex(assemble_tokens("vs_2_0\n")), "FFFE0200 0000FFFF");
     EXPECT_EQ(hex(assemble_tokens("vs.2.0\n")), "FFFE0200 0000FFFF");

@@ -2,6 +2,7 @@
 // against native D3DX) and against malformed tables, which must give errors, never crashes.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,51 @@ TEST(ConstantTable, WineMatrices) {
     const auto found = find_constant_table(*d.program);
     ASSERT_TRUE(found && found->ok());
     EXPECT_EQ(found->table->constants.size(), 6u);
+}
+
+// Wine's ctab_with_default_values (vs_2_0), payload only: Wine's expected default values (checked
+// against native D3DX) are the table's raw registers, 4 floats each.
+TEST(ConstantTable, WineDefaultValues) {
+    const std::vector<uint32_t> payload = {
+        0x42415443, 0x0000001c, 0x000001b7, 0xfffe0200, 0x00000005, 0x0000001c, 0x00000100, 0x000001b0,
+        0x00000080, 0x00080002, 0x00000003, 0x00000084, 0x00000094,  // arr
+        0x000000c4, 0x000c0002, 0x00000001, 0x000000c8, 0x000000d8,  // flt
+        0x000000e8, 0x00040002, 0x00000004, 0x000000f0, 0x00000100,  // mat3
+        0x00000140, 0x00000002, 0x00000004, 0x000000f0, 0x00000148,  // mat4
+        0x00000188, 0x000b0002, 0x00000001, 0x00000190, 0x000001a0,  // vec4
+        0x00727261, 0x00030000, 0x00010001, 0x00000003, 0x00000000,
+        0x42c80000, 0x00000000, 0x00000000, 0x00000000, 0x43480000, 0x00000000, 0x00000000, 0x00000000,
+        0x43960000, 0x00000000, 0x00000000, 0x00000000,
+        0x00746c66, 0x00030000, 0x00010001, 0x00000001, 0x00000000,
+        0x411fd70a, 0x00000000, 0x00000000, 0x00000000,
+        0x3374616d, 0xababab00, 0x00030003, 0x00040004, 0x00000001, 0x00000000,
+        0x41300000, 0x425c0000, 0x42c60000, 0x44a42000, 0x41b00000, 0x42840000, 0x447c8000, 0x44b0c000,
+        0x42040000, 0x429a0000, 0x448ae000, 0x44bd6000, 0x42300000, 0x42b00000, 0x44978000, 0x44ca0000,
+        0x3474616d, 0xababab00,
+        0x3f800000, 0x40a00000, 0x41100000, 0x41500000, 0x40000000, 0x40c00000, 0x41200000, 0x41600000,
+        0x40400000, 0x40e00000, 0x41300000, 0x41700000, 0x40800000, 0x41000000, 0x41400000, 0x41800000,
+        0x34636576, 0xababab00, 0x00030001, 0x00040001, 0x00000001, 0x00000000,
+        0x41200000, 0x41a00000, 0x41f00000, 0x42200000,
+        0x325f7376, 0x4d004141, 0x41414141, 0x00000000};
+    const ConstantTableResult r = parse_constant_table(payload);
+    ASSERT_TRUE(r.ok()) << r.error;
+    auto floats = [](const ConstantInfo* c) {
+        std::vector<float> f;
+        for (uint32_t bits : c->default_value) f.push_back(std::bit_cast<float>(bits));
+        return f;
+    };
+    const ConstantTable& t = *r.table;
+    ASSERT_EQ(t.constants.size(), 5u);
+    EXPECT_EQ(floats(find_constant(t, "mat4")),
+              (std::vector<float>{1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 4, 8, 12, 16}));
+    EXPECT_EQ(floats(find_constant(t, "mat3")),
+              (std::vector<float>{11, 55, 99, 1313, 22, 66, 1010, 1414, 33, 77, 1111, 1515, 44, 88, 1212, 1616}));
+    EXPECT_EQ(floats(find_constant(t, "arr")), (std::vector<float>{100, 0, 0, 0, 200, 0, 0, 0, 300, 0, 0, 0}));
+    EXPECT_EQ(floats(find_constant(t, "vec4")), (std::vector<float>{10, 20, 30, 40}));
+    EXPECT_EQ(floats(find_constant(t, "flt")), (std::vector<float>{9.99f, 0, 0, 0}));
+    EXPECT_EQ(constant_type_name(find_constant(t, "arr")->type), "float[3]");
+    EXPECT_EQ(find_constant(t, "mat3")->register_index, 4);
+    EXPECT_EQ(find_constant(t, "vec4")->register_index, 11);
 }
 
 // A hand-built table (offsets worked out below) with a struct, an array and default values.
