@@ -244,7 +244,8 @@ int run_validate(const std::string& input, unsigned max_slots) {
         auto result = assembler::assemble(as_text(*bytes), options);
         print_diagnostics(result.diagnostics);
         if (!result.ok()) return kInvalidInput;
-        std::cout << name << ": valid " << result.program->version.name() << '\n';
+        std::cout << name << ": valid " << result.program->version.name() << ", "
+                  << isa::slot_summary(isa::count_slots(*result.program)) << '\n';
         return kOk;
     }
     auto program = load_bytecode(name, *bytes);
@@ -252,7 +253,8 @@ int run_validate(const std::string& input, unsigned max_slots) {
     const auto violations = isa::validate(*program, validation);
     print_violations(std::cerr, name, *program, violations);
     if (!violations.empty()) return kInvalidInput;
-    std::cout << name << ": valid " << program->version.name() << '\n';
+    std::cout << name << ": valid " << program->version.name() << ", " << isa::slot_summary(isa::count_slots(*program))
+              << '\n';
     return kOk;
 }
 

@@ -11,6 +11,7 @@
 
 #include "helpers.h"
 #include "sm2/isa/constant_table.h"
+#include "sm2/isa/validator.h"
 
 namespace sm2::assembler::test {
 namespace {
@@ -20,6 +21,7 @@ struct Blob {
     Tokens tokens;
     std::vector<std::string> registers;  // "name reg size" from the header's Registers table
     std::vector<std::string> listing;    // the header's instructions, one per entry
+    std::string slots;                   // "approximately N instruction slots used (...)"
 };
 
 std::string read_text(const std::filesystem::path& p) {
@@ -65,6 +67,7 @@ std::vector<Blob> blobs_of(const std::filesystem::path& file) {
     const std::string text = read_text(file);
     std::vector<std::string> registers;
     std::vector<std::string> listing;
+    std::string slots;
     std::istringstream lines(text);
     enum class Section { None, Registers, Listing } section = Section::None;
     for (std::string line; std::getline(lines, line);) {
@@ -80,6 +83,7 @@ std::vector<Blob> blobs_of(const std::filesystem::path& file) {
             section = Section::Listing;
             listing.push_back(line);
         } else if (section == Section::Listing) {
+            if (line.starts_with("// approximately")) slots = line.substr(3);
             if (line.starts_with("//") || line == "#endif") section = Section::None;
             else if (!line.empty()) listing.push_back(line);
         }
@@ -96,6 +100,7 @@ std::vector<Blob> blobs_of(const std::filesystem::path& file) {
         b.tokens = array_tokens(text.substr(open + 1, close - open - 1), bytes);
         b.registers = registers;
         b.listing = listing;
+        b.slots = slots;
         blobs.push_back(std::move(b));
     }
     return blobs;
@@ -222,6 +227,24 @@ TEST(CompiledCorpus, InstructionsReadAsTheCompilersListing) {
         ASSERT_EQ(ours.size(), b.listing.size()) << text;
         for (size_t i = 0; i < ours.size(); ++i)
             EXPECT_TRUE(same_statement(ours[i], b.listing[i])) << ours[i] << " vs fxc: " << b.listing[i];
+        ++checked;
+    }
+    EXPECT_GE(checked, 10u);
+}
+
+}  // namespace
+}  // namespace sm2::assembler::test
+
+namespace sm2::assembler::test {
+namespace {
+
+// fxc's own slot count, printed under its listing, against the validator's.
+TEST(CompiledCorpus, SlotCountsAreFxcs) {
+    size_t checked = 0;
+    for (const Blob& b : corpus()) {
+        if (b.slots.empty()) continue;
+        SCOPED_TRACE(b.source);
+        EXPECT_EQ(isa::slot_summary(isa::count_slots(*isa::decode(b.tokens).program)), b.slots);
         ++checked;
     }
     EXPECT_GE(checked, 10u);
