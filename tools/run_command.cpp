@@ -1,4 +1,5 @@
 // sm2 run: execute one shader over a few lanes and print what it writes.
+#include <algorithm>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -20,6 +21,7 @@
 #include "sm2/emu/engine.h"
 #include "sm2/emu/jit.h"
 #include "sm2/isa/bytecode.h"
+#include "sm2/isa/constant_table.h"
 #include "sm2/isa/validator.h"
 #include "sm2/runtime/d3d9_names.h"
 #include "sm2/runtime/sampler.h"
@@ -66,6 +68,43 @@ std::pair<unsigned, std::vector<std::string_view>> register_assignment(const std
     auto values = split(std::string_view(arg).substr(eq + 1), ',');
     if (values.empty() || values.size() > 4) throw UsageError{"expected 1 to 4 values in " + what};
     return {index, values};
+}
+
+// --const NAME=values names a float constant of the shader's constant table (CTAB); its values
+// fill its registers four at a time (a float4x4 takes up to 16). c#=values passes through.
+std::vector<std::string> constant_assignments(const isa::Program& program, const std::string& arg) {
+    const size_t eq = arg.find('=');
+    const std::string name = arg.substr(0, eq);
+    const bool register_form = name.size() > 1 && name[0] == 'c' &&
+                               name.find_first_not_of("0123456789", 1) == std::string::npos;
+    if (eq == std::string::npos || register_form) return {arg};
+    const std::string what = "--const '" + arg + "'";
+    const auto table = isa::find_constant_table(program);
+    if (!table) throw UsageError{what + ": the shader has no constant table to look '" + name + "' up in"};
+    if (!table->ok()) throw InputError{"the shader's constant table: " + table->error};
+    const isa::ConstantInfo* constant = isa::find_constant(*table->table, name);
+    if (!constant) {
+        std::string names;
+        for (const isa::ConstantInfo& c : table->table->constants) names += (names.empty() ? "" : ", ") + c.name;
+        throw UsageError{what + ": the constant table has no '" + name + "' (it has: " + names + ")"};
+    }
+    if (constant->register_set != isa::ConstantRegisterSet::Float4)
+        throw UsageError{what + ": '" + name + "' lives in " + isa::register_set_prefix(constant->register_set) +
+                         std::to_string(constant->register_index) + "; --const sets c# registers"};
+    const auto values = split(std::string_view(arg).substr(eq + 1), ',');
+    const size_t capacity = 4u * constant->register_count;
+    if (values.empty() || values.size() > capacity)
+        throw UsageError{"expected 1 to " + std::to_string(capacity) + " values for '" + name + "' (" +
+                         isa::constant_type_name(constant->type) + ", " + std::to_string(constant->register_count) +
+                         " register" + (constant->register_count == 1 ? "" : "s") + ") in " + what};
+    std::vector<std::string> out;
+    for (size_t first = 0; first < values.size(); first += 4) {
+        std::string assignment = "c" + std::to_string(constant->register_index + first / 4) + "=";
+        for (size_t k = first; k < std::min(values.size(), first + 4); ++k)
+            assignment += (k == first ? "" : ",") + std::string(values[k]);
+        out.push_back(std::move(assignment));
+    }
+    return out;
 }
 
 std::optional<isa::Program> load_program(const std::string& path) {
@@ -317,9 +356,12 @@ int run_shader(const RunOptions& o) {
     const unsigned constant_count = const_file ? const_file->count : 0;
 
     std::vector<std::array<float, 4>> constants(constant_count, {0, 0, 0, 0});
-    for (const std::string& arg : o.constants) {
-        auto [index, values] = register_assignment(arg, "c", constant_count, "--const");
-        for (unsigned c = 0; c < values.size(); ++c) constants[index][c] = parse_number<float>(values[c], "--const '" + arg + "'");
+    for (const std::string& named : o.constants) {
+        for (const std::string& arg : constant_assignments(*program, named)) {
+            auto [index, values] = register_assignment(arg, "c", constant_count, "--const");
+            for (unsigned c = 0; c < values.size(); ++c)
+                constants[index][c] = parse_number<float>(values[c], "--const '" + named + "'");
+        }
     }
     emu::StaticFlowConstants flow;
     for (const std::string& arg : o.integers) {
@@ -361,7 +403,9 @@ void add_run_command(CLI::App& app, int& status) {
     auto o = std::make_shared<RunOptions>();
     auto* cmd = app.add_subcommand("run", "Execute a vs_2_0/ps_2_0 shader and print every output it writes");
     cmd->add_option("shader", o->shader, "Shader: assembly text or bytecode ('-' for stdin)")->required();
-    cmd->add_option("--const", o->constants, "Float constant, e.g. c4=1,2,3,4 (repeatable)");
+    cmd->add_option("--const", o->constants,
+                    "Float constant, e.g. c4=1,2,3,4, or by its constant-table name, e.g. WorldViewProj=1,0,0,0,0,1,"
+                    "... (filling its registers four values at a time; repeatable)");
     cmd->add_option("--int", o->integers, "Integer constant, e.g. i0=3,0,1,0 (repeatable)");
     cmd->add_option("--bool", o->booleans, "Boolean constant, e.g. b0=true (repeatable)");
     cmd->add_option("--input", o->inputs,

@@ -141,6 +141,7 @@ struct AsmOptions {
     std::string format;
     std::string array_name = "g_shader";
     bool no_validate = false;
+    bool wine_order = false;
     unsigned max_slots = 0;
 };
 
@@ -175,6 +176,7 @@ int run_asm(const AsmOptions& o) {
     assembler::AssembleOptions options;
     options.file_name = display_name(o.input);
     options.validate = !o.no_validate;
+    options.wine_order = o.wine_order;
     options.validation.max_instruction_slots = o.max_slots;
     auto result = assembler::assemble(as_text(*bytes), options);
     print_diagnostics(result.diagnostics);
@@ -242,7 +244,8 @@ int run_validate(const std::string& input, unsigned max_slots) {
         auto result = assembler::assemble(as_text(*bytes), options);
         print_diagnostics(result.diagnostics);
         if (!result.ok()) return kInvalidInput;
-        std::cout << name << ": valid " << result.program->version.name() << '\n';
+        std::cout << name << ": valid " << result.program->version.name() << ", "
+                  << isa::slot_summary(isa::count_slots(*result.program)) << '\n';
         return kOk;
     }
     auto program = load_bytecode(name, *bytes);
@@ -250,7 +253,8 @@ int run_validate(const std::string& input, unsigned max_slots) {
     const auto violations = isa::validate(*program, validation);
     print_violations(std::cerr, name, *program, violations);
     if (!violations.empty()) return kInvalidInput;
-    std::cout << name << ": valid " << program->version.name() << '\n';
+    std::cout << name << ": valid " << program->version.name() << ", " << isa::slot_summary(isa::count_slots(*program))
+              << '\n';
     return kOk;
 }
 
@@ -270,6 +274,9 @@ void add_shader_commands(CLI::App& app, int& status) {
         ->check(CLI::Validator(c_identifier_error, "C identifier", "C identifier"));
     asm_cmd->add_flag("--no-validate", asm_options->no_validate,
                       "Encode without running the validator (as Wine's assembler does)");
+    asm_cmd->add_flag("--wine-order", asm_options->wine_order,
+                      "Write Wine's statement order (every dcl, then every def, defb, defi, then the rest) instead "
+                      "of the source order (what Microsoft's assemblers keep)");
     asm_cmd->add_option("--max-slots", asm_options->max_slots,
                         "Raise the instruction-slot limit (e.g. 512 for ps_2_x-size shaders)");
     asm_cmd->callback([asm_options, &status] { status = run_asm(*asm_options); });

@@ -1,4 +1,4 @@
-// assemble(): text -> tokens -> statements -> Program in Wine's order -> validation -> bytecode.
+// assemble(): text -> tokens -> statements -> Program (source order, or Wine's) -> validation -> bytecode.
 #include "sm2/assembler/assembler.h"
 
 #include <algorithm>
@@ -15,7 +15,7 @@ namespace {
 using detail::Group;
 
 // Wine's writer emits the version, then all input dcls, sampler dcls, defs, defbs and defis
-// (each in source order), then the instructions (spec README item 1).
+// (each in source order), then the instructions and comment blocks (spec README item 1).
 constexpr Group kEmitOrder[] = {Group::InputDcl, Group::SamplerDcl, Group::Def,
                                 Group::DefB,     Group::DefI,       Group::Code};
 
@@ -29,9 +29,16 @@ void run(std::string_view text, const AssembleOptions& options, detail::Reporter
     program.version = *parsed.version;
     std::vector<uint32_t> files;  // file of each program instruction
     program.instructions.reserve(parsed.statements.size());
-    for (Group group : kEmitOrder) {
+    if (options.wine_order) {
+        for (Group group : kEmitOrder) {
+            for (detail::Statement& s : parsed.statements) {
+                if (s.group != group) continue;
+                program.instructions.push_back(std::move(s.instruction));
+                files.push_back(s.file);
+            }
+        }
+    } else {
         for (detail::Statement& s : parsed.statements) {
-            if (s.group != group) continue;
             program.instructions.push_back(std::move(s.instruction));
             files.push_back(s.file);
         }

@@ -2,10 +2,13 @@
 #include "sm2/assembler/disassembler.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <string_view>
 #include <vector>
 
 #include "sm2/assembler/assembler.h"
 #include "sm2/isa/bytecode.h"
+#include "sm2/isa/constant_table.h"
 
 #include "sm2/isa/opcodes.h"
 #include "sm2/isa/registers.h"
@@ -117,11 +120,120 @@ std::string format_dcl(isa::ShaderVersion version, const isa::Instruction& ins) 
     return s;
 }
 
+std::string hex_dword(uint32_t word) {
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "0x%08x", word);
+    return buf;
+}
+
+// Printable ASCII as is, anything else as \xHH, so that a string from the block can never end
+// the `//` line it is printed on.
+std::string printable(std::string_view s) {
+    std::string out;
+    for (char c : s) {
+        const auto u = static_cast<unsigned char>(c);
+        if (u >= 0x20 && u < 0x7F) {
+            out += c;
+        } else {
+            static constexpr char kHex[] = "0123456789abcdef";
+            out += "\\x";
+            out += kHex[u >> 4];
+            out += kHex[u & 15];
+        }
+    }
+    return out;
+}
+
+std::string fourcc_text(uint32_t word) {
+    std::string s;
+    for (int k = 0; k < 4; ++k) s += static_cast<char>((word >> (8 * k)) & 0xFF);
+    return s;
+}
+
+bool is_printable_fourcc(uint32_t word) {
+    for (int k = 0; k < 4; ++k) {
+        const uint32_t c = (word >> (8 * k)) & 0xFF;
+        if (c < 0x20 || c >= 0x7F) return false;
+    }
+    return true;
+}
+
+std::string padded(std::string s, size_t width) {
+    if (s.size() < width) s.append(width - s.size(), ' ');
+    return s;
+}
+
+std::string default_value_text(const isa::ConstantInfo& c) {
+    std::string s;
+    const size_t per_register = c.register_set == isa::ConstantRegisterSet::Bool ? 1 : 4;
+    for (size_t i = 0; i < c.default_value.size(); ++i) {
+        s += i % per_register == 0 ? (i == 0 ? "{" : "}, {") : ", ";
+        const uint32_t v = c.default_value[i];
+        s += c.register_set == isa::ConstantRegisterSet::Float4 ? syntax::format_float_literal(v)
+                                                               : std::to_string(static_cast<int32_t>(v));
+    }
+    return s.empty() ? s : s + "}";
+}
+
+void append_members(const std::vector<isa::ConstantMember>& members, const std::string& indent, std::string& out) {
+    for (const isa::ConstantMember& m : members) {
+        out += "//" + indent + "." + printable(m.name) + "  " + isa::constant_type_name(m.type) + "\n";
+        append_members(m.type.members, indent + "  ", out);
+    }
+}
+
+// `//` lines that say what a comment block holds: a constant table decoded, or its FOURCC.
+std::string describe_comment(const std::vector<uint32_t>& payload) {
+    const std::string size = std::to_string(payload.size()) + " DWORD" + (payload.size() == 1 ? "" : "s");
+    if (payload.empty()) return "// empty comment block\n";
+    if (payload[0] != isa::kFourccCtab) {
+        if (!is_printable_fourcc(payload[0])) return "// comment block, " + size + "\n";
+        return "// comment block '" + printable(fourcc_text(payload[0])) + "', " + size + "\n";
+    }
+    const isa::ConstantTableResult parsed = isa::parse_constant_table(payload);
+    if (!parsed.ok()) return "// CTAB constant table, " + size + ", not decoded: " + printable(parsed.error) + "\n";
+    const isa::ConstantTable& table = *parsed.table;
+    std::string out = "// CTAB constant table, " + size + ": target " + printable(table.target) + ", creator \"" +
+                      printable(table.creator) + "\", version " + hex_dword(table.version) + ", flags " +
+                      hex_dword(table.flags) + "\n";
+    size_t name_width = 4;
+    size_t type_width = 4;
+    for (const isa::ConstantInfo& c : table.constants) {
+        name_width = std::max(name_width, printable(c.name).size());
+        type_width = std::max(type_width, isa::constant_type_name(c.type).size());
+    }
+    if (!table.constants.empty())
+        out += "//   " + padded("name", name_width) + "  " + padded("type", type_width) + "  register  count\n";
+    for (const isa::ConstantInfo& c : table.constants) {
+        std::string line = "//   " + padded(printable(c.name), name_width) + "  " +
+                           padded(isa::constant_type_name(c.type), type_width) + "  " +
+                           padded(isa::register_set_prefix(c.register_set) + std::to_string(c.register_index), 8) +
+                           "  " + std::to_string(c.register_count);
+        const std::string defaults = default_value_text(c);
+        if (!defaults.empty()) line += "  default " + defaults;
+        out += line + "\n";
+        append_members(c.type.members, "     ", out);
+    }
+    return out;
+}
+
+// The `comment` directive with the block's words, eight to a line.
+std::string comment_directive(const std::vector<uint32_t>& payload, bool wrap) {
+    std::string s = "comment";
+    constexpr size_t kWordsPerLine = 8;
+    for (size_t i = 0; i < payload.size(); ++i) {
+        if (i == 0) s += ' ';
+        else if (wrap && i % kWordsPerLine == 0) s += ",\n        ";
+        else s += ", ";
+        s += hex_dword(payload[i]);
+    }
+    return s;
+}
+
 }  // namespace
 
 std::string format_instruction(isa::ShaderVersion version, const isa::Instruction& ins) {
-    if (ins.opcode == isa::Opcode::Comment)
-        return "// comment: " + std::to_string(ins.comment.size()) + " DWORDs";
+    if (ins.opcode == isa::Opcode::Comment) return comment_directive(ins.comment, false);
     const isa::OpcodeInfo* info = ins.info();
     if (!info) return "// unknown opcode " + std::to_string(static_cast<unsigned>(ins.opcode));
     switch (info->layout) {
@@ -162,29 +274,45 @@ std::string format_instruction(isa::ShaderVersion version, const isa::Instructio
     return s;
 }
 
-std::string disassemble(const isa::Program& program) {
+namespace {
+
+// The listing, and for each instruction the 1-based line its statement starts on.
+std::string listing(const isa::Program& program, std::vector<uint32_t>* statement_lines) {
     std::string out = program.version.name() + "\n";
+    uint32_t line = 2;
     for (const isa::Instruction& ins : program.instructions) {
-        out += format_instruction(program.version, ins);
+        std::string text;
+        if (ins.opcode == isa::Opcode::Comment) {
+            const std::string description = describe_comment(ins.comment);
+            line += static_cast<uint32_t>(std::count(description.begin(), description.end(), '\n'));
+            out += description;
+            text = comment_directive(ins.comment, true);
+        } else {
+            text = format_instruction(program.version, ins);
+        }
+        if (statement_lines) statement_lines->push_back(line);
+        line += 1 + static_cast<uint32_t>(std::count(text.begin(), text.end(), '\n'));
+        out += text;
         out += '\n';
     }
     return out;
 }
 
+}  // namespace
+
+std::string disassemble(const isa::Program& program) { return listing(program, nullptr); }
+
 namespace {
 
-// The token slice of each statement but comment blocks: [token_offset, next statement's offset).
-std::vector<std::vector<uint32_t>> statement_tokens(const isa::Program& program, const std::vector<uint32_t>& tokens,
-                                                    std::vector<size_t>* indices) {
+// The token slice of each statement: [token_offset, next statement's offset).
+std::vector<std::vector<uint32_t>> statement_tokens(const isa::Program& program, const std::vector<uint32_t>& tokens) {
     std::vector<std::vector<uint32_t>> out;
     const auto& ins = program.instructions;
     for (size_t i = 0; i < ins.size(); ++i) {
         const size_t begin = ins[i].token_offset;
         const size_t end = i + 1 < ins.size() ? ins[i + 1].token_offset : tokens.size() - 1;  // END
-        if (ins[i].opcode == isa::Opcode::Comment) continue;
         out.emplace_back(tokens.begin() + static_cast<std::ptrdiff_t>(std::min(begin, tokens.size())),
                          tokens.begin() + static_cast<std::ptrdiff_t>(std::min(std::max(begin, end), tokens.size())));
-        if (indices) indices->push_back(i);
     }
     return out;
 }
@@ -193,7 +321,8 @@ std::vector<std::vector<uint32_t>> statement_tokens(const isa::Program& program,
 
 CheckedDisassembly disassemble_checked(const isa::Program& program) {
     CheckedDisassembly result;
-    result.text = disassemble(program);
+    std::vector<uint32_t> statement_lines;
+    result.text = listing(program, &statement_lines);
     const auto& ins = program.instructions;
     auto fail_at = [&](size_t i, const std::string& why) {
         const uint32_t offset = i < ins.size() ? ins[i].token_offset : 0;
@@ -205,26 +334,27 @@ CheckedDisassembly disassemble_checked(const isa::Program& program) {
     options.validate = false;
     const AssembleResult again = assemble(result.text, options);
     if (!again.ok()) {
-        // Line 1 is the version; statement i is on line i + 2.
-        for (const Diagnostic& d : again.diagnostics)
-            if (d.line >= 2 && d.line - 2 < ins.size())
-                return fail_at(d.line - 2, "does not assemble: " + d.message);
+        // The statement whose lines hold the first located diagnostic (line 1 is the version).
+        for (const Diagnostic& d : again.diagnostics) {
+            const auto after = std::upper_bound(statement_lines.begin(), statement_lines.end(), d.line);
+            if (after != statement_lines.begin())
+                return fail_at(static_cast<size_t>(after - statement_lines.begin()) - 1,
+                               "does not assemble: " + d.message);
+        }
         result.error = DisassemblyError{0, "the text does not assemble"};
         return result;
     }
-    std::vector<size_t> indices;
-    const auto original = statement_tokens(program, isa::encode(program), &indices);
+    const auto original = statement_tokens(program, isa::encode(program));
     // Token offsets come from the decoder (an assembled Program does not carry them).
     const isa::DecodeResult decoded = isa::decode(again.tokens);
     if (!decoded.ok()) {
         result.error = DisassemblyError{0, "the text assembles to bytecode that does not decode"};
         return result;
     }
-    const auto back = statement_tokens(*decoded.program, again.tokens, nullptr);
+    const auto back = statement_tokens(*decoded.program, again.tokens);
     for (size_t k = 0; k < original.size(); ++k) {
         if (k >= back.size() || original[k] != back[k])
-            return fail_at(indices[k], "assembles to different bytes (a value or register text cannot express, or "
-                                       "a statement the assembler would place elsewhere)");
+            return fail_at(k, "assembles to different bytes (a value or register text cannot express)");
     }
     if (back.size() != original.size()) result.error = DisassemblyError{0, "the text assembles to more statements"};
     return result;

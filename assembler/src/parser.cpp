@@ -11,6 +11,7 @@
 //   index      := '[' term ('+' term)* ']'     term: a0[.swizzle] | aL | decimal number
 //   dcl        := dcl[_usage[N]|_2d|_cube|_volume|_1d][_pp|_centroid|_sat] reg[.mask]
 //   def        := def c#, f, f, f, f  |  defi i#, n, n, n, n  |  defb b#, true|false
+//   comment    := comment [word {, word}]      word: 0x and 1-8 hex digits (a raw comment block)
 // Extensions beyond Wine (all documented in the assembler's report):
 //   * mnemonics, modifiers, registers, swizzles, usages, true/false in any letter case;
 //   * def floats with an exponent (1.5e-3) and raw IEEE-754 bit patterns (0x7FC00000), the
@@ -210,6 +211,7 @@ private:
         const std::string lower = syntax::to_lower(mnemonic.text);
         if (looks_like_version(lower))
             fail(mnemonic, "the shader version may appear only once, as the first statement");
+        if (lower == "comment") return parse_comment(mnemonic);
         const size_t underscore = lower.find('_');
         const std::string base = lower.substr(0, underscore);
         std::vector<std::string> parts;
@@ -559,6 +561,30 @@ private:
         }
         return Group::InputDcl;
     }
+
+    // --- comment block ------------------------------------------------------------------
+    // `comment [0xHHHHHHHH {, 0xHHHHHHHH}]`: a comment token and its payload, word for word.
+    // The words may continue over several lines (a statement never starts with a number).
+    Statement parse_comment(const Token& directive) {
+        Statement s;
+        s.file = directive.file;
+        s.group = Group::Code;
+        isa::Instruction& ins = s.instruction;
+        ins.opcode = isa::Opcode::Comment;
+        ins.location = isa::SourceLocation{directive.line, directive.column};
+        if (peek().kind != TokenKind::Number) return s;
+        while (true) {
+            const Token t = expect(TokenKind::Number, "a DWORD (0xHHHHHHHH)");
+            std::string error;
+            const auto word = syntax::parse_hex_dword(t.text, &error);
+            if (!word) fail(t, "comment words are written 0x and 1 to 8 hex digits, found " + describe(t));
+            if (ins.comment.size() == kMaxCommentWords)
+                fail(t, "a comment block holds at most " + std::to_string(kMaxCommentWords) + " DWORDs");
+            ins.comment.push_back(*word);
+            if (!accept(TokenKind::Comma)) return s;
+        }
+    }
+    static constexpr size_t kMaxCommentWords = 0x7FFF;  // the comment token's 15-bit size field
 
     // --- def / defi / defb --------------------------------------------------------------
     Group parse_def(const isa::OpcodeInfo& info, isa::Instruction& ins) {

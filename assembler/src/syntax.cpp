@@ -121,26 +121,36 @@ std::string format_write_mask(uint8_t mask) {
     return s;
 }
 
+bool is_hex_literal(std::string_view text) {
+    return text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X');
+}
+
+std::optional<uint32_t> parse_hex_dword(std::string_view text, std::string* error) {
+    auto fail = [&](std::string message) -> std::optional<uint32_t> {
+        if (error) *error = std::move(message);
+        return std::nullopt;
+    };
+    const std::string_view digits = is_hex_literal(text) ? text.substr(2) : std::string_view();
+    if (digits.empty() || digits.size() > 8) return fail("'" + std::string(text) + "' is not 0x and 1 to 8 hex digits");
+    uint32_t bits = 0;
+    for (char c : digits) {
+        if (!is_hex_digit(c)) return fail("invalid hex digit in '" + std::string(text) + "'");
+        const uint32_t v = is_digit(c) ? static_cast<uint32_t>(c - '0') : static_cast<uint32_t>((c | 0x20) - 'a' + 10);
+        bits = bits << 4 | v;
+    }
+    return bits;
+}
+
 std::optional<uint32_t> parse_float_literal(bool negative, std::string_view text,
                                             std::string* error) {
     auto fail = [&](std::string message) -> std::optional<uint32_t> {
         if (error) *error = std::move(message);
         return std::nullopt;
     };
-    if (text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X')) {
+    if (is_hex_literal(text)) {
         // Raw bit pattern (extension).
-        const std::string_view digits = text.substr(2);
         if (negative) return fail("a raw bit pattern (0x...) cannot be negated");
-        if (digits.empty() || digits.size() > 8)
-            return fail("a raw float bit pattern needs 1 to 8 hex digits");
-        uint32_t bits = 0;
-        for (char c : digits) {
-            if (!is_hex_digit(c)) return fail("invalid hex digit in '" + std::string(text) + "'");
-            const uint32_t v = is_digit(c) ? static_cast<uint32_t>(c - '0')
-                                           : static_cast<uint32_t>((c | 0x20) - 'a' + 10);
-            bits = bits << 4 | v;
-        }
-        return bits;
+        return parse_hex_dword(text, error);
     }
     std::string_view body = text;
     if (!body.empty() && (body.back() == 'f' || body.back() == 'F')) body.remove_suffix(1);

@@ -32,6 +32,11 @@ namespace sm2::assembler::syntax {
 // "xz" for 0b0101; "" for the full mask.
 [[nodiscard]] std::string format_write_mask(uint8_t mask);
 
+// "0x..." (the lexer's hex number form).
+[[nodiscard]] bool is_hex_literal(std::string_view text);
+// 0x and 1 to 8 hex digits -> the 32-bit value, or nullopt with *error set.
+[[nodiscard]] std::optional<uint32_t> parse_hex_dword(std::string_view text, std::string* error);
+
 // def literals. Accepted: [+-]digits[.digits][e[+-]digits][f], [+-].digits..., and the raw
 // IEEE-754 bit pattern 0xHHHHHHHH (extension; used for NaN and infinity). Decimal text is read
 // as a double and then rounded to float, as Wine's atof-then-cast does.

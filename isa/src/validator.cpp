@@ -879,11 +879,11 @@ private:
         const unsigned total_limit =
             override_total ? options_.max_instruction_slots : profile_.max_instruction_slots;
         for (size_t i = 0; i < size(); ++i) {
-            const OpcodeInfo* row = is_comment(i) ? nullptr : at(i).info();
-            if (!row || row->slot_class == SlotClass::Setup) continue;
-            const unsigned slots = row->slots_in(version_);
-            total += slots;
-            (row->slot_class == SlotClass::Texture ? texture : arithmetic) += slots;
+            const SlotCount slots = instruction_slots(version_, at(i));
+            if (slots.total == 0) continue;
+            total += slots.total;
+            arithmetic += slots.arithmetic;
+            texture += slots.texture;
             auto over = [&](bool& flag, unsigned used, unsigned limit, const char* kind) {
                 if (flag || used <= limit) return;
                 flag = true;
@@ -1270,6 +1270,33 @@ std::vector<Violation> validate(const Program& program, const ValidationOptions&
                           SIZE_MAX,
                           {}}};
     return Validator(program, *profile, options).run();
+}
+
+SlotCount instruction_slots(ShaderVersion version, const Instruction& instruction) {
+    const OpcodeInfo* row = instruction.opcode == Opcode::Comment ? nullptr : instruction.info();
+    if (!row || row->slot_class == SlotClass::Setup) return {};
+    const unsigned slots = row->slots_in(version);
+    const bool texture = row->slot_class == SlotClass::Texture;
+    return SlotCount{slots, texture ? 0 : slots, texture ? slots : 0};
+}
+
+SlotCount count_slots(const Program& program) {
+    SlotCount sum;
+    for (const Instruction& ins : program.instructions) {
+        const SlotCount one = instruction_slots(program.version, ins);
+        sum.total += one.total;
+        sum.arithmetic += one.arithmetic;
+        sum.texture += one.texture;
+    }
+    return sum;
+}
+
+std::string slot_summary(const SlotCount& slots) {
+    std::string s = "approximately " + std::to_string(slots.total) + " instruction slot" +
+                    (slots.total == 1 ? "" : "s") + " used";
+    if (slots.texture > 0)
+        s += " (" + std::to_string(slots.texture) + " texture, " + std::to_string(slots.arithmetic) + " arithmetic)";
+    return s;
 }
 
 }  // namespace sm2::isa

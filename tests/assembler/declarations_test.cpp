@@ -1,4 +1,4 @@
-// dcl, def, defi, defb, Wine's statement order, and the worked examples of bytecode.md §13.
+// dcl, def, defi, defb, the source and Wine's statement orders, and the worked examples of bytecode.md §13.
 #include <fstream>
 #include <sstream>
 
@@ -103,9 +103,19 @@ TEST(Def, IntegersAndBooleans) {
     EXPECT_EQ(hex(statement_tokens("vs_2_0", "defb b2, TRUE")), "0200002F E00F0802 00000001");
 }
 
-// Wine's order: version, input dcl, sampler dcl, def, defb, defi, instructions.
-TEST(Order, DeclarationsAndDefinitionsMoveToTheTop) {
+// Microsoft's assemblers keep the source order (fxc writes def before dcl, so do its listings).
+TEST(Order, SourceOrderByDefault) {
     EXPECT_EQ(hex(assemble_tokens("ps_2_0\nmov r0, c0\ndef c0, 1, 1, 1, 1\ndcl t0\ndcl_2d s0\n")),
+              "FFFF0200 02000001 800F0000 A0E40000 05000051 A00F0000 3F800000 3F800000 3F800000 3F800000 "
+              "0200001F 80000000 B00F0000 0200001F 90000000 A00F0800 0000FFFF");
+    EXPECT_EQ(hex(assemble_tokens("ps_2_0\ndcl_cube s3\ndcl v0\n")),
+              "FFFF0200 0200001F 98000000 A00F0803 0200001F 80000000 900F0000 0000FFFF");
+}
+
+// Wine's order (wine_order): version, input dcl, sampler dcl, def, defb, defi, instructions.
+TEST(Order, WineOrderMovesDeclarationsAndDefinitionsToTheTop) {
+    constexpr bool kWineOrder = true;
+    EXPECT_EQ(hex(assemble_tokens("ps_2_0\nmov r0, c0\ndef c0, 1, 1, 1, 1\ndcl t0\ndcl_2d s0\n", kWineOrder)),
               "FFFF0200 0200001F 80000000 B00F0000 0200001F 90000000 A00F0800 "
               "05000051 A00F0000 3F800000 3F800000 3F800000 3F800000 02000001 800F0000 A0E40000 0000FFFF");
     EXPECT_EQ(hex(assemble_tokens("vs_2_0\n"
@@ -115,7 +125,8 @@ TEST(Order, DeclarationsAndDefinitionsMoveToTheTop) {
                                   "def c1, 0, 0, 0, 0\n"
                                   "dcl_normal v1\n"
                                   "def c0, 0, 0, 0, 0\n"
-                                  "dcl_position v0\n")),
+                                  "dcl_position v0\n",
+                                  kWineOrder)),
               "FFFE0200 0200001F 80000003 900F0001 0200001F 80000000 900F0000 "
               "05000051 A00F0001 00000000 00000000 00000000 00000000 "
               "05000051 A00F0000 00000000 00000000 00000000 00000000 "
@@ -123,8 +134,17 @@ TEST(Order, DeclarationsAndDefinitionsMoveToTheTop) {
               "05000030 F00F0000 00000001 00000000 00000000 00000000 "
               "02000001 800F0000 90E40001 0000FFFF");
     // The sampler group comes after all inputs even when declared first.
-    EXPECT_EQ(hex(assemble_tokens("ps_2_0\ndcl_cube s3\ndcl v0\n")),
+    EXPECT_EQ(hex(assemble_tokens("ps_2_0\ndcl_cube s3\ndcl v0\n", kWineOrder)),
               "FFFF0200 0200001F 80000000 900F0000 0200001F 98000000 A00F0803 0000FFFF");
+}
+
+// `comment` writes a comment token (size in bits 16..30, 0xFFFE below) and the words as given.
+TEST(CommentBlock, WordsAsGivenWhereWritten) {
+    EXPECT_EQ(hex(assemble_tokens("ps_2_0\nmov oC0, c0\nCOMMENT 0xA,\n  0xffffffff\ncomment\n")),
+              "FFFF0200 02000001 800F0800 A0E40000 0002FFFE 0000000A FFFFFFFF 0000FFFE 0000FFFF");
+    // Wine's order moves declarations and definitions, not comment blocks.
+    EXPECT_EQ(hex(assemble_tokens("ps_2_0\ncomment 0x1\ndef c0, 0, 0, 0, 0\n", true)),
+              "FFFF0200 05000051 A00F0000 00000000 00000000 00000000 00000000 0001FFFE 00000001 0000FFFF");
 }
 
 TEST(Version, Forms) {
@@ -146,7 +166,8 @@ TEST(Syntax, CommentsWhitespaceAndStatementLayout) {
         "mov r1, r2 mov r2, r3\n"  // Wine needs no newline between statements
         "def c0,\n 1, 2,\n 3, 4\n"  // nor inside one
         "\r\n";
-    EXPECT_EQ(hex(assemble_tokens(text)),
+    constexpr bool kWineOrder = true;  // the def moves first, as Wine writes it
+    EXPECT_EQ(hex(assemble_tokens(text, kWineOrder)),
               "FFFE0200 05000051 A00F0000 3F800000 40000000 40400000 40800000 "
               "02000001 800F0000 80E40001 03000002 800F0000 80E40000 80E40001 "
               "02000001 800F0001 80E40002 02000001 800F0002 80E40003 0000FFFF");

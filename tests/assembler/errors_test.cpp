@@ -140,6 +140,22 @@ TEST(Errors, Definitions) {
     expect_errors("vs_2_0\ndef_sat c0, 1, 2, 3, 4\n", {{2, 1, "takes no modifiers"}});
 }
 
+TEST(Errors, CommentBlocks) {
+    expect_errors("ps_2_0\ncomment 0x1, 12\n",
+                  {{2, 14, "comment words are written 0x and 1 to 8 hex digits, found '12'"}});
+    expect_errors("ps_2_0\ncomment 0x123456789\n", {{2, 9, "found '0x123456789'"}});
+    expect_errors("ps_2_0\ncomment 0x1 0x2\n", {{2, 13, "unexpected '0x2' after the end of the statement"}});
+    expect_errors("ps_2_0\ncomment 0x1,\nmov oC0, c0\n", {{3, 1, "expected a DWORD (0xHHHHHHHH), found 'mov'"}});
+    // The size field has 15 bits: 32767 words fit, the 32768th is refused.
+    std::string text = "ps_2_0\ncomment 0x0";
+    for (int i = 1; i < 0x7FFF; ++i) text += ",0x0";
+    const AssembleResult fits = assemble_unvalidated(text);
+    ASSERT_TRUE(fits.ok()) << diagnostics_text(fits);
+    EXPECT_EQ(fits.tokens[1], 0x7FFFFFFEu);
+    EXPECT_EQ(fits.tokens.size(), 2u + 0x7FFF + 1);
+    expect_errors(text + ",0x0\n", {{2, 9 + 4 * 0x7FFF, "a comment block holds at most 32767 DWORDs"}});
+}
+
 TEST(Errors, Preprocessor) {
     expect_errors("#include \"x.h\"\nvs_2_0\n", {{1, 1, "unsupported preprocessor directive '#include'"}});
     expect_errors("#if 1\nvs_2_0\n#endif\n",
@@ -221,13 +237,23 @@ TEST(Validation, ViolationsBecomeDiagnostics) {
 }
 
 TEST(Validation, InstructionLocations) {
-    const AssembleResult r = assemble_unvalidated(
-        "ps_2_0\n  mov r0, c0\ndcl t0\n\tdef c0, 1, 1, 1, 1\n");
+    const char* text = "ps_2_0\n  mov r0, c0\ndcl t0\n\tdef c0, 1, 1, 1, 1\n";
+    const AssembleResult r = assemble_unvalidated(text);
     ASSERT_TRUE(r.ok());
     ASSERT_EQ(r.program->instructions.size(), 3u);
-    EXPECT_EQ(r.program->instructions[0].location, (isa::SourceLocation{3, 1}));  // dcl
-    EXPECT_EQ(r.program->instructions[1].location, (isa::SourceLocation{4, 2}));  // def
-    EXPECT_EQ(r.program->instructions[2].location, (isa::SourceLocation{2, 3}));  // mov
+    EXPECT_EQ(r.program->instructions[0].location, (isa::SourceLocation{2, 3}));  // mov
+    EXPECT_EQ(r.program->instructions[1].location, (isa::SourceLocation{3, 1}));  // dcl
+    EXPECT_EQ(r.program->instructions[2].location, (isa::SourceLocation{4, 2}));  // def
+    // Reordered (Wine's order), each statement keeps its own location.
+    AssembleOptions wine;
+    wine.validate = false;
+    wine.wine_order = true;
+    const AssembleResult w = assemble(text, wine);
+    ASSERT_TRUE(w.ok());
+    ASSERT_EQ(w.program->instructions.size(), 3u);
+    EXPECT_EQ(w.program->instructions[0].location, (isa::SourceLocation{3, 1}));  // dcl
+    EXPECT_EQ(w.program->instructions[1].location, (isa::SourceLocation{4, 2}));  // def
+    EXPECT_EQ(w.program->instructions[2].location, (isa::SourceLocation{2, 3}));  // mov
 }
 
 // ---- robustness ------------------------------------------------------------------------

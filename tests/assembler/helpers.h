@@ -35,9 +35,10 @@ inline std::string diagnostics_text(const AssembleResult& r) {
 }
 
 // Assembles without the validator (the Wine-parity mode); fails the test on errors.
-inline Tokens assemble_tokens(std::string_view text) {
+inline Tokens assemble_tokens(std::string_view text, bool wine_order = false) {
     AssembleOptions options;
     options.validate = false;
+    options.wine_order = wine_order;
     const AssembleResult r = assemble(text, options);
     EXPECT_TRUE(r.ok()) << text << "\n" << diagnostics_text(r);
     return r.tokens;

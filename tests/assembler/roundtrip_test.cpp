@@ -190,8 +190,6 @@ TEST(Disassembler, Formatting) {
     ASSERT_TRUE(r.ok()) << diagnostics_text(r);
     EXPECT_EQ(disassemble(*r.program),
               "vs_2_0\n"
-              "def c0, 0.5, -0, 1024, 0.1\n"
-              "def c1, 0x7FC00000, 0x7F800000, 0, 0\n"
               "mov_sat r0.xy, -c[a0.x + 5].yzxw\n"
               "mov r0, r1.xy\n"
               "mov r0, r1.x\n"
@@ -199,6 +197,8 @@ TEST(Disassembler, Formatting) {
               "mov r0, r1.xyw\n"
               "mov r0, c[aL + 10]\n"
               "mov r0, c[a0]\n"
+              "def c0, 0.5, -0, 1024, 0.1\n"
+              "def c1, 0x7FC00000, 0x7F800000, 0, 0\n"
               "mov oFog, r0.x\n"
               "if !b2\n");
     const AssembleResult p = assemble_unvalidated(
@@ -217,16 +217,40 @@ TEST(Disassembler, Formatting) {
     (void)vs;
 }
 
-TEST(Disassembler, CommentBlocksArePrintedAndSkipped) {
-    // A compiler blob: version, CTAB comment of 3 DWORDs, mov, END.
+TEST(Disassembler, CommentBlocksArePrintedAsDirectivesThatReassemble) {
+    // A compiler blob: version, a comment of 3 DWORDs (not a valid CTAB), mov, END.
     const Tokens blob = {0xFFFF0200, isa::tokens::encode_comment(3), 0x42415443, 0x1, 0x2,
                          0x02000001, 0x800F0800, 0xA0E40000, 0x0000FFFF};
     const isa::DecodeResult d = isa::decode(blob);
     ASSERT_TRUE(d.ok()) << d.error->to_string();
     const std::string text = disassemble(*d.program);
-    EXPECT_EQ(text, "ps_2_0\n// comment: 3 DWORDs\nmov oC0, c0\n");
-    // Reassembled without the comment (assemblers write none).
-    EXPECT_EQ(hex(assemble_tokens(text)), "FFFF0200 02000001 800F0800 A0E40000 0000FFFF");
+    EXPECT_EQ(text,
+              "ps_2_0\n"
+              "// CTAB constant table, 3 DWORDs, not decoded: the CTAB header at byte offset 0x0 (28 bytes) lies "
+              "outside the 8 bytes after 'CTAB'\n"
+              "comment 0x42415443, 0x00000001, 0x00000002\n"
+              "mov oC0, c0\n");
+    EXPECT_EQ(assemble_tokens(text), blob);
+
+    // Other FOURCCs, blocks of any bytes, and empty blocks come back too; long blocks wrap.
+    Tokens other = {0xFFFE0200, isa::tokens::encode_comment(0), isa::tokens::encode_comment(2), 0x53455250,
+                    0xFFFFFFFF, isa::tokens::encode_comment(10)};
+    for (uint32_t k = 0; k < 10; ++k) other.push_back(0x0000FFFE + k);
+    other.push_back(0x0000FFFF);
+    const isa::DecodeResult o = isa::decode(other);
+    ASSERT_TRUE(o.ok()) << o.error->to_string();
+    const std::string other_text = disassemble(*o.program);
+    EXPECT_EQ(other_text,
+              "vs_2_0\n"
+              "// empty comment block\n"
+              "comment\n"
+              "// comment block 'PRES', 2 DWORDs\n"
+              "comment 0x53455250, 0xffffffff\n"
+              "// comment block, 10 DWORDs\n"
+              "comment 0x0000fffe, 0x0000ffff, 0x00010000, 0x00010001, 0x00010002, 0x00010003, 0x00010004, "
+              "0x00010005,\n"
+              "        0x00010006, 0x00010007\n");
+    EXPECT_EQ(assemble_tokens(other_text), other);
 }
 
 // disassemble_checked: what the decoder accepts either comes back through text byte for byte or
@@ -271,14 +295,24 @@ TEST(Disassembler, CheckedDisassemblyRoundTripsOrNamesTheStatement) {
         EXPECT_NE(cu.error->message.find("?20:"), std::string::npos) << cu.error->message;
     }
 
-    // A def after an arithmetic instruction: the assembler puts defs first, so the bytes differ.
+    // A def after an arithmetic instruction stays there (source order).
     const Tokens late_def = {0xFFFF0200, 0x02000001, 0x800F0800, 0xA0E40000,
                              0x05000051, 0xA00F0000, 0, 0, 0, 0, 0x0000FFFF};
     const isa::DecodeResult l = isa::decode(late_def);
     ASSERT_TRUE(l.ok()) << l.error->to_string();
     const CheckedDisassembly cl = disassemble_checked(*l.program);
-    ASSERT_TRUE(cl.error);
-    EXPECT_EQ(cl.error->token_offset, 1u);
+    EXPECT_FALSE(cl.error) << cl.error->message;
+
+    // A statement that fails after a multi-line comment block is still named by its offset.
+    Tokens after_comment = {0xFFFF0200, isa::tokens::encode_comment(12)};
+    for (uint32_t k = 0; k < 12; ++k) after_comment.push_back(k);
+    const size_t defb_at = after_comment.size();
+    for (uint32_t t : {0x0200002Fu, 0xE00F0800u, 2u, 0x0000FFFFu}) after_comment.push_back(t);
+    const isa::DecodeResult a = isa::decode(after_comment);
+    ASSERT_TRUE(a.ok()) << a.error->to_string();
+    const CheckedDisassembly ca = disassemble_checked(*a.program);
+    ASSERT_TRUE(ca.error);
+    EXPECT_EQ(ca.error->token_offset, defb_at);
 }
 
 TEST(Disassembler, VertexDeclarationsPrintTheirUsage) {

@@ -53,6 +53,39 @@ TEST(Cli, AsmBinaryFileThenDisThenAsmAgainIsIdentical) {
     EXPECT_EQ(slurp(bin2), bytes);
 }
 
+TEST(Cli, AsmKeepsTheSourceOrderUnlessWineOrder) {
+    const std::string text = "ps_2_0\ndef c0, 1, 1, 1, 1\ndcl t0\nmov oC0, c0\n";
+    auto source = sm2("asm -", text);
+    ASSERT_EQ(source.status, 0) << source.err;
+    EXPECT_EQ(source.out,
+              "FFFF0200\n05000051 A00F0000 3F800000 3F800000 3F800000 3F800000\n0200001F 80000000 B00F0000\n"
+              "02000001 800F0800 A0E40000\n0000FFFF\n");
+    auto wine = sm2("asm - --wine-order", text);
+    ASSERT_EQ(wine.status, 0) << wine.err;
+    EXPECT_EQ(wine.out,
+              "FFFF0200\n0200001F 80000000 B00F0000\n05000051 A00F0000 3F800000 3F800000 3F800000 3F800000\n"
+              "02000001 800F0800 A0E40000\n0000FFFF\n");
+}
+
+// fxc output (SDL's YUV pixel shader, tests/assembler/compiled): the constant table is decoded
+// into comments and the text assembles back to the same file.
+TEST(Cli, DisOfCompilerOutputDecodesTheTableAndReassemblesIdentically) {
+    const std::string blob = std::string(SM2_SOURCE_DIR) + "/tests/fuzz/corpus/decoder/fxc_ps_yuv_ctab.bin";
+    const std::string text = tmp("yuv.asm"), again = tmp("yuv.bin");
+    auto dis = sm2("dis " + blob + " -o " + text);
+    ASSERT_EQ(dis.status, 0) << dis.err;
+    const std::string listing = slurp(text);
+    EXPECT_NE(listing.find("// CTAB constant table, 97 DWORDs: target ps_2_0, creator \"Microsoft (R) HLSL Shader "
+                           "Compiler 10.1\""),
+              std::string::npos)
+        << listing;
+    EXPECT_NE(listing.find("//   Yoffset                 float4     c0        1\n"), std::string::npos) << listing;
+    EXPECT_NE(listing.find("//   theSampler+theTextureY  texture2D  s0        1\n"), std::string::npos) << listing;
+    EXPECT_NE(listing.find("\ncomment 0x42415443, 0x0000001c, "), std::string::npos) << listing;
+    ASSERT_EQ(sm2("asm " + text + " -o " + again).status, 0);
+    EXPECT_EQ(slurp(again), slurp(blob));
+}
+
 TEST(Cli, AsmReadsStdinAndWritesCArray) {
     auto r = sm2("asm - --format c --name g_ps", "ps_2_0\nmov oC0, c0\n");
     ASSERT_EQ(r.status, 0) << r.err;
@@ -153,6 +186,45 @@ TEST(CliRun, VertexShaderOutputs) {
                  "--const c0=1,0,0,0 --const c1=0,1,0,0 --const c2=0,0,1,0 --const c3=0,0,0,1");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.out, "oPos = 1 2 3 1\noD0 = 0.5 0.25 1 1\n");
+}
+
+// fxc output (burgerlib's vsstaticpositiondx9, tests/assembler/compiled): the constant table puts
+// float4x4 ViewProjectionMatrix in c0..c3; oPos = (dot(v, c0), .., dot(v, c3)) with v = (v0.xyz, 1).
+TEST(CliRun, ConstantsByTheirConstantTableName) {
+    const std::string blob = std::string(SM2_SOURCE_DIR) + "/tests/fuzz/corpus/decoder/fxc_vs_matrix_ctab.bin";
+    auto r = sm2("run " + blob + " --input v0=1,2,3 --input v1=0.5,0.25 "
+                 "--const ViewProjectionMatrix=2,0,0,0,0,3,0,0,0,0,4,0,1,1,1,1");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out, "oPos = 2 6 12 7\noT0.xy = 0.5 0.25\n");  // the shader writes oT0.xy only
+    // Fewer values fill the first registers; c# still works beside names.
+    auto partial = sm2("run " + blob + " --input v0=1,2,3 --const ViewProjectionMatrix=1,1,1,1 --const c3=0,0,0,1");
+    ASSERT_EQ(partial.status, 0) << partial.err;
+    EXPECT_EQ(partial.out.substr(0, 15), "oPos = 7 0 0 1\n");
+    auto unknown = sm2("run " + blob + " --input v0=1,2,3 --const World=1");
+    EXPECT_EQ(unknown.status, 2);
+    EXPECT_NE(unknown.err.find("the constant table has no 'World' (it has: ViewProjectionMatrix)"), std::string::npos)
+        << unknown.err;
+    auto too_many = sm2("run " + blob + " --input v0=1,2,3 --const ViewProjectionMatrix=" + std::string(33, ',') + "1");
+    EXPECT_EQ(too_many.status, 2);
+    EXPECT_NE(too_many.err.find("expected 1 to 16 values for 'ViewProjectionMatrix' (float4x4, 4 registers)"),
+              std::string::npos)
+        << too_many.err;
+    // A shader without a table.
+    auto none = sm2("run " + kSamples + "gouraud.vs.asm --input v0=1,2,3 --const Matrix=1");
+    EXPECT_EQ(none.status, 2);
+    EXPECT_NE(none.err.find("the shader has no constant table to look 'Matrix' up in"), std::string::npos) << none.err;
+}
+
+TEST(Cli, ValidatePrintsFxcStyleSlotCounts) {
+    // fxc's listing of this blob ends "approximately 12 instruction slots used (3 texture, 9 arithmetic)".
+    auto r = sm2("validate " + std::string(SM2_SOURCE_DIR) + "/tests/fuzz/corpus/decoder/fxc_ps_yuv_ctab.bin");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find(": valid ps_2_0, approximately 12 instruction slots used (3 texture, 9 arithmetic)\n"),
+              std::string::npos)
+        << r.out;
+    auto vs = sm2("validate -", "vs_2_0\ndcl_position v0\nm4x4 oPos, v0, c0\n");
+    ASSERT_EQ(vs.status, 0) << vs.err;
+    EXPECT_EQ(vs.out, "<stdin>: valid vs_2_0, approximately 4 instruction slots used\n");
 }
 
 TEST(CliRun, PrecisionModesRoundAsSpecified) {

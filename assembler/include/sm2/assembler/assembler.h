@@ -1,4 +1,5 @@
-// Assembly text -> Program -> bytecode, byte for byte as Wine's D3DAssemble writes it
+// Assembly text -> Program -> bytecode, byte for byte as Microsoft's assemblers write it
+// (every statement in source order), or as Wine's D3DAssemble writes it with wine_order
 // (declarations and definitions moved to the top: input dcl, sampler dcl, def, defb, defi,
 // then the instructions in source order).
 #pragma once
@@ -20,6 +21,7 @@ struct AssembleOptions {
     bool validate = true;               // run the isa validator; its violations become errors
     isa::ValidationOptions validation;
     size_t max_errors = 20;             // stop reporting after this many
+    bool wine_order = false;            // Wine's statement order instead of the source order
 };
 
 struct AssembleResult {

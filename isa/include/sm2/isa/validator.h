@@ -52,4 +52,17 @@ struct ValidationOptions {
 [[nodiscard]] std::vector<Violation> validate(const Program& program,
                                               const ValidationOptions& options = {});
 
+// Instruction slots by budget (registers-and-limits.md): what the slot-budget rule counts.
+struct SlotCount {
+    unsigned total = 0;
+    unsigned arithmetic = 0;  // everything but texture instructions (vs: all of them)
+    unsigned texture = 0;     // texld*, texkill
+};
+// The slots of one statement (none for dcl, def* and comment blocks).
+[[nodiscard]] SlotCount instruction_slots(ShaderVersion version, const Instruction& instruction);
+[[nodiscard]] SlotCount count_slots(const Program& program);
+// fxc's summary line: "approximately 12 instruction slots used (3 texture, 9 arithmetic)"; the
+// part in parentheses only when texture slots are used, "slot" for one.
+[[nodiscard]] std::string slot_summary(const SlotCount& slots);
+
 }  // namespace sm2::isa
