@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -192,4 +193,46 @@ TEST(HlslCompile, ErrorsAreLocatedInTheHlsl) {
 
     EXPECT_EQ(sm2("compile " + bad + " -T ps_3_0").status, 2);
     EXPECT_EQ(sm2("compile " + bad + " -T ps_2_0 -D 1X=2").status, 2);
+}
+
+TEST(HlslCompile, StructsAndNamedEntryPoint) {
+    // The source document's Program 3.1 (Gouraud pass-through), entry point PShader.
+    const auto ps = compile("gouraud",
+                            "struct T_PIN { float4 col : COLOR0; };\n"
+                            "struct T_POUT { float4 col : COLOR0; };\n"
+                            "T_POUT PShader(T_PIN pin) { T_POUT pout; pout.col = pin.col; return pout; }\n",
+                            "ps_2_0", "-E PShader");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "--input v0=0.1,0.2,0.3,0.4", "oC0"), {0.1f, 0.2f, 0.3f, 0.4f});
+}
+
+TEST(HlslCompile, SinCosWithRangeReduction) {
+    // The waving lake: h = sin(2x + t) * 0.5 + cos(z + t) * 0.25 at x = 0.5, z = 0.25, t = 0.3:
+    // sin(1.3) = 0.963558, cos(0.55) = 0.852525 -> h = 0.481779 + 0.213131 = 0.694910.
+    // With the identity in c0..c3, oPos = (x, h, z, 1).
+    const auto vs = compile("lake",
+                            "float4x4 mvp; float time;\n"
+                            "struct VOut { float4 pos : POSITION; float4 col : COLOR0; };\n"
+                            "VOut main(float4 p : POSITION) {\n"
+                            "  VOut o;\n"
+                            "  float h = sin(p.x * 2 + time) * 0.5 + cos(p.z + time) * 0.25;\n"
+                            "  o.pos = mul(float4(p.x, h, p.z, 1), mvp);\n"
+                            "  o.col = float4(h, h, 1, 1);\n"
+                            "  return o;\n}\n",
+                            "vs_2_0");
+    ASSERT_FALSE(vs.empty());
+    const std::string args = "--input v0=0.5,0,0.25,1 --const c0=1,0,0,0 --const c1=0,1,0,0 --const c2=0,0,1,0 "
+                             "--const c3=0,0,0,1 --const c4=0.3,0,0,0";
+    expect_near(run_output(vs, args, "oPos"), {0.5f, 0.69491f, 0.25f, 1}, 1e-4f);
+}
+
+TEST(HlslCompile, IncludeFolderAndDefines) {
+    // #include <scale.h> from -I; SCALE from -D: 0.5 * 3 = 1.5.
+    const std::string dir = tmp("include_dir");
+    std::filesystem::create_directories(dir);
+    write_file(dir + "/scale.h", "float scaled(float x) { return x * SCALE; }\n");
+    const auto ps = compile("include", "#include <scale.h>\nfloat4 main() : COLOR { return float4(scaled(0.5), 0, 0, 1); }\n",
+                            "ps_2_0", "-I " + dir + " -D SCALE=3");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "", "oC0"), {1.5f, 0, 0, 1});
 }
