@@ -115,6 +115,19 @@ void add_glslang_log(const std::string& log, const std::string& file, std::vecto
     }
 }
 
+// SPIRV-Tools unrolls only loops whose OpLoopMerge asks for it; SM2 has no loops in ps_2_0 (and
+// only i#-counted ones in vs_2_0), so every loop is asked to be unrolled, as with HLSL's [unroll].
+void mark_loops_for_unrolling(std::vector<uint32_t>& words) {
+    constexpr uint32_t kOpLoopMerge = 246, kUnroll = 0x1, kDontUnroll = 0x2;
+    for (size_t i = 5; i < words.size();) {
+        const uint32_t count = words[i] >> 16;
+        if (count == 0) return;
+        if ((words[i] & 0xFFFF) == kOpLoopMerge && count >= 4 && i + 3 < words.size() && !(words[i + 3] & kDontUnroll))
+            words[i + 3] |= kUnroll;
+        i += count;
+    }
+}
+
 void initialize_glslang() {
     static std::once_flag once;
     std::call_once(once, [] { glslang::InitializeProcess(); });
@@ -170,6 +183,7 @@ SpirvModule hlsl_to_spirv(std::string_view source, const CompileOptions& options
     spv::SpvBuildLogger logger;
     glslang::GlslangToSpv(*program.getIntermediate(stage), spirv, &logger, &spv_options);
 
+    mark_loops_for_unrolling(spirv);
     spvtools::Optimizer optimizer(SPV_ENV_UNIVERSAL_1_0);
     std::string optimizer_errors;
     optimizer.SetMessageConsumer([&](spv_message_level_t level, const char*, const spv_position_t&, const char* m) {

@@ -236,3 +236,19 @@ TEST(HlslCompile, IncludeFolderAndDefines) {
     ASSERT_FALSE(ps.empty());
     expect_near(run_output(ps, "", "oC0"), {1.5f, 0, 0, 1});
 }
+
+TEST(HlslCompile, LoopsAreUnrolledAndTheSlotLimitIsLocated) {
+    // x = x * x + 0.5 three times from 0.5: 0.75, 1.0625, 1.62890625.
+    const std::string loop = "float4 main(float2 uv : TEXCOORD0) : COLOR {\n  float x = uv.x;\n"
+                             "  for (int i = 0; i < COUNT; i++) x = x * x + 0.5;\n  return x;\n}\n";
+    const auto ps = compile("loop3", loop, "ps_2_0", "-D COUNT=3");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "--input t0=0.5,0", "oC0"), {1.62890625f, 1.62890625f, 1.62890625f, 1.62890625f});
+    // 70 mads do not fit ps_2_0's 64 arithmetic slots: the error names the limit and the loop's line.
+    const std::string source = tmp("loop70.hlsl");
+    write_file(source, loop);
+    const cli_support::Run r = sm2("compile " + source + " -T ps_2_0 -D COUNT=70");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("loop70.hlsl(3,"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("the limit is 64"), std::string::npos) << r.err;
+}
