@@ -23,7 +23,7 @@ namespace {
 
 // SPIR-V numbers used below (SPIR-V specification, §3).
 namespace op {
-constexpr uint32_t Undef = 1, String = 7, Line = 8, ExtInst = 12, EntryPoint = 15, TypeVoid = 19,
+constexpr uint32_t Undef = 1, Line = 8, ExtInst = 12, EntryPoint = 15, TypeVoid = 19,
                    TypeBool = 20, TypeInt = 21, TypeFloat = 22, TypeVector = 23, TypeMatrix = 24,
                    TypeImage = 25, TypeSampledImage = 27, TypeArray = 28, TypeStruct = 30, TypePointer = 32,
                    ConstantTrue = 41, ConstantFalse = 42, Constant = 43, ConstantComposite = 44,
@@ -39,7 +39,7 @@ constexpr uint32_t Undef = 1, String = 7, Line = 8, ExtInst = 12, EntryPoint = 1
                    NoLine = 317, DecorateString = 5632;
 }  // namespace op
 namespace decoration {
-constexpr uint32_t RowMajor = 4, ColMajor = 5, BuiltIn = 11, Binding = 33, UserSemantic = 5635;
+constexpr uint32_t RowMajor = 4, BuiltIn = 11, Binding = 33, UserSemantic = 5635;
 }
 namespace glsl {  // GLSL.std.450
 constexpr uint32_t FAbs = 4, Floor = 8, Fract = 10, Sin = 13, Cos = 14, Pow = 26, Exp = 27, Log = 28, Exp2 = 29,
@@ -50,9 +50,6 @@ constexpr uint32_t kStorageUniformConstant = 0, kStorageInput = 1, kStorageUnifo
 constexpr uint32_t kBuiltInPosition = 0;
 constexpr int kTempCount = 12;  // r0-r11 in both vs_2_0 and ps_2_0
 
-struct CompileError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
 
 struct SpirvInstruction {
     uint32_t opcode = 0;
@@ -92,7 +89,12 @@ struct Value {
     int component = -1;      // Pointer to one component of a vector
 };
 
+struct CompileError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
 Value component_view(const Value& v, uint32_t component) {
+    if (component >= 4) throw CompileError("a vector component past .w (or an undefined shuffle component)");
     Value out = v;
     out.count = 1;
     out.swizzle = {v.swizzle[component], 0, 0, 0};
@@ -138,15 +140,20 @@ public:
             generate();
             finish(out);
         } catch (const CompileError& e) {
-            out.text.clear();
-            out.origin.clear();
-            out.diagnostics.push_back(
-                {assembler::Severity::Error, options_.file_name, location_.line, location_.column, e.what()});
+            fail(out, e.what());
+        } catch (const std::exception& e) {  // a SPIR-V shape this back end did not expect
+            fail(out, std::string("internal error: unsupported SPIR-V (") + e.what() + ")");
         }
         return out;
     }
 
 private:
+    void fail(AssemblyOutput& out, const std::string& message) const {
+        out.text.clear();
+        out.origin.clear();
+        out.diagnostics.push_back({assembler::Severity::Error, options_.file_name, location_.line, location_.column, message});
+    }
+
     // ---- reading the module -------------------------------------------------------------------
     void parse() {
         if (spirv_.size() < 5) throw CompileError("internal error: empty SPIR-V module");
@@ -863,6 +870,8 @@ private:
             Value c = value(w.at(2));
             if (c.kind != Value::Kind::Condition) throw CompileError("boolean logic beyond one comparison is not supported");
             c.negate = !c.negate;
+            for (uint32_t operand : {c.lhs, c.rhs})  // the comparison's operands live as long as the negation
+                if (operand != 0) last_use_[operand] = std::max(last_use_[operand], last_use_[w.at(1)]);
             define(w.at(1), c);
             return;
         }
