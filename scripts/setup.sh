@@ -14,7 +14,7 @@ packages=(
   libglm-dev
   pybind11-dev python3-dev python3-numpy python3-pytest   # the Python module sm2emu and its tests
   libopenimageio-dev
-  glslang-dev glslang-tools spirv-tools
+  glslang-dev glslang-tools spirv-tools   # sm2 compile (hlsl/): HLSL front end, SPIR-V optimizer and its headers
 )
 
 missing=()

@@ -26,6 +26,9 @@ constexpr Examples kExamples[] = {
     {"validate", "Examples:\n"
                  "  sm2 validate shader.asm\n"
                  "  sm2 validate shader.pso --max-slots 512\n"},
+    {"compile", "Examples:\n"
+                "  sm2 compile tint.hlsl -T ps_2_0 -E main      hex words on stdout\n"
+                "  sm2 compile sky.hlsl -T vs_2_0 -D FOG=1 -I include -o sky.vso\n"},
     {"run", "Examples:\n"
             "  sm2 run lake.vs.asm --input v0=1,2,3 --const c4=0.5,0.5,0.5,1\n"
             "  sm2 run tex.ps.asm --texture s0=wood.png --input t0=0.25,0.75 --json\n"

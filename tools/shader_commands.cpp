@@ -1,4 +1,4 @@
-// sm2 asm / dis / validate.
+// sm2 asm / dis / validate / compile.
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -17,6 +17,7 @@
 #include "violations.h"
 #include "sm2/assembler/assembler.h"
 #include "sm2/assembler/disassembler.h"
+#include "sm2/hlsl/compiler.h"
 #include "sm2/isa/bytecode.h"
 #include "sm2/isa/validator.h"
 
@@ -258,6 +259,81 @@ int run_validate(const std::string& input, unsigned max_slots) {
     return kOk;
 }
 
+struct CompileCommandOptions {
+    std::string input;
+    std::string output = "-";
+    std::string format;
+    std::string array_name = "g_shader";
+    std::string profile;
+    std::string entry = "main";
+    std::vector<std::string> defines;
+    std::vector<std::string> include_dirs;
+};
+
+// Empty when `define` is NAME or NAME=VALUE with NAME an identifier.
+std::string define_error(const std::string& define) {
+    const std::string name = define.substr(0, define.find('='));
+    const bool ok = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
+                    std::all_of(name.begin(), name.end(), [](char c) {
+                        return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                    }) && define.find_first_of("\n\r") == std::string::npos;
+    return ok ? std::string() : "'" + define + "' is not NAME or NAME=VALUE (NAME an identifier, one line)";
+}
+
+// Binary goes to a file, text to stdout, as for asm: hex words on stdout without -o.
+bool write_bytecode(const std::string& command, const std::string& output, const std::string& requested_format,
+                    const std::string& array_name, const std::vector<uint32_t>& tokens) {
+    const std::string format = !requested_format.empty() ? requested_format : (output == "-" ? "hex" : "bin");
+    std::string error;
+    bool written = false;
+    if (format == "bin")
+        written = write_output(output, isa::to_bytes(tokens), error);
+    else if (format == "hex")
+        written = write_output(output, format_hex(tokens), error);
+    else
+        written = write_output(output, format_c_array(tokens, array_name), error);
+    if (!written) std::cerr << "sm2 " << command << ": " << error << '\n';
+    return written;
+}
+
+int run_compile(const CompileCommandOptions& o) {
+    if (o.format == "bin" && o.output == "-") {
+        std::cerr << "sm2 compile: binary output goes to a file: use -o FILE (or --format hex or c for text on "
+                     "stdout)\n";
+        return kBadUsage;
+    }
+    const auto stage = hlsl::parse_profile(o.profile);
+    if (!stage) {
+        std::cerr << "sm2 compile: -T " << o.profile << ": the profiles are vs_2_0 and ps_2_0\n";
+        return kBadUsage;
+    }
+    std::string error;
+    auto bytes = read_input(o.input, error);
+    if (!bytes) {
+        std::cerr << "sm2 compile: " << error << '\n';
+        return kInvalidInput;
+    }
+    hlsl::CompileOptions options;
+    options.file_name = o.input == "-" ? display_name(o.input) : o.input;
+    options.entry_point = o.entry;
+    options.stage = *stage;
+    options.include_dirs = o.include_dirs;
+    for (const auto& d : o.defines) {
+        const size_t eq = d.find('=');
+        options.defines.emplace_back(d.substr(0, eq), eq == std::string::npos ? "1" : d.substr(eq + 1));
+    }
+    const auto result = hlsl::compile(as_text(*bytes), options);
+    for (const auto& d : result.diagnostics) {
+        // fxc's form, file(line,col): error: message, which IDEs parse.
+        std::cerr << d.file;
+        if (d.line > 0) std::cerr << '(' << d.line << ',' << d.column << ')';
+        std::cerr << ": " << (d.severity == assembler::Severity::Error ? "error" : d.severity == assembler::Severity::Warning ? "warning" : "note")
+                  << ": " << d.message << '\n';
+    }
+    if (!result.ok()) return kInvalidInput;
+    return write_bytecode("compile", o.output, o.format, o.array_name, result.tokens) ? kOk : kInvalidInput;
+}
+
 }  // namespace
 
 void add_shader_commands(CLI::App& app, int& status) {
@@ -295,6 +371,22 @@ void add_shader_commands(CLI::App& app, int& status) {
     val_cmd->add_option("input", *val_input, "Shader file ('-' for stdin)")->required();
     val_cmd->add_option("--max-slots", *val_slots, "Raise the instruction-slot limit");
     val_cmd->callback([val_input, val_slots, &status] { status = run_validate(*val_input, *val_slots); });
+
+    auto compile_options = std::make_shared<CompileCommandOptions>();
+    auto* compile_cmd = app.add_subcommand("compile", "Compile HLSL to vs_2_0/ps_2_0 bytecode (docs/hlsl.md)");
+    compile_cmd->add_option("input", compile_options->input, "HLSL file ('-' for stdin)")->required();
+    compile_cmd->add_option("-T,--profile", compile_options->profile, "vs_2_0 or ps_2_0")->required();
+    compile_cmd->add_option("-E,--entry", compile_options->entry, "Entry point function (default main)");
+    compile_cmd->add_option("-D,--define", compile_options->defines, "Preprocessor macro NAME or NAME=VALUE")
+        ->check(CLI::Validator(define_error, "NAME[=VALUE]", "NAME[=VALUE]"));
+    compile_cmd->add_option("-I,--include", compile_options->include_dirs, "Folder searched by #include");
+    compile_cmd->add_option("-o,--output", compile_options->output,
+                            "Output file (default: stdout, '-', which takes the text forms hex and c only)");
+    compile_cmd->add_option("--format", compile_options->format, "bin, hex or c, as for asm")
+        ->check(CLI::IsMember({"bin", "hex", "c"}));
+    compile_cmd->add_option("--name", compile_options->array_name, "Array name for --format c (a C identifier)")
+        ->check(CLI::Validator(c_identifier_error, "C identifier", "C identifier"));
+    compile_cmd->callback([compile_options, &status] { status = run_compile(*compile_options); });
 }
 
 }  // namespace sm2::tools

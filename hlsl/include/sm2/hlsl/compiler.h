@@ -1,0 +1,41 @@
+// HLSL source -> vs_2_0/ps_2_0 bytecode: glslang's HLSL front end to SPIR-V, SPIRV-Tools'
+// optimizer, then sm2's own back end from SPIR-V to SM2 assembly, which the assembler encodes and
+// validates against the profile's limits (docs/hlsl.md lists what is supported).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "sm2/assembler/diagnostics.h"
+#include "sm2/isa/program.h"
+#include "sm2/isa/version.h"
+
+namespace sm2::hlsl {
+
+struct CompileOptions {
+    std::string file_name = "<input>";  // used in diagnostics and to resolve #include "..."
+    std::string entry_point = "main";
+    isa::ShaderType stage = isa::ShaderType::Pixel;  // vs_2_0 or ps_2_0
+    std::vector<std::pair<std::string, std::string>> defines;  // -D NAME=VALUE (value may be empty)
+    std::vector<std::string> include_dirs;                       // -I DIR, searched after the file's folder
+};
+
+struct CompileResult {
+    std::optional<isa::Program> program;  // set when there were no errors
+    std::vector<uint32_t> tokens;         // the bytecode, version .. END
+    std::string assembly;                 // the SM2 assembly the back end produced (empty on error)
+    std::vector<assembler::Diagnostic> diagnostics;  // located at the HLSL source
+    [[nodiscard]] bool ok() const { return program.has_value(); }
+};
+
+// Never throws; every problem (syntax, unsupported construct, profile limit) becomes a diagnostic.
+[[nodiscard]] CompileResult compile(std::string_view source, const CompileOptions& options);
+
+// The profile name as -T spells it ("vs_2_0", "ps_2_0"); nullopt for any other.
+[[nodiscard]] std::optional<isa::ShaderType> parse_profile(std::string_view profile);
+
+}  // namespace sm2::hlsl

@@ -1,0 +1,1362 @@
+// SPIR-V -> SM2 assembly. Every SSA value lives in a vec4 register (a temp, an input, a uniform or
+// a `def` literal) seen through a swizzle and an optional negation, so extracts, shuffles and
+// negations cost no instruction. Temps are allocated when a value is defined and freed after its
+// last use; a temp is never reused within the instruction that frees it, so multi-instruction
+// sequences (and nrm/pow/crs, whose dest may not be a source) are safe.
+#include "backend.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <optional>
+#include <regex>
+#include <set>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace sm2::hlsl {
+
+namespace {
+
+// SPIR-V numbers used below (SPIR-V specification, §3).
+namespace op {
+constexpr uint32_t Undef = 1, Line = 8, ExtInst = 12, EntryPoint = 15, TypeVoid = 19,
+                   TypeBool = 20, TypeInt = 21, TypeFloat = 22, TypeVector = 23, TypeMatrix = 24,
+                   TypeImage = 25, TypeSampledImage = 27, TypeArray = 28, TypeStruct = 30, TypePointer = 32,
+                   ConstantTrue = 41, ConstantFalse = 42, Constant = 43, ConstantComposite = 44,
+                   ConstantNull = 46, Function = 54, FunctionEnd = 56, Variable = 59, Load = 61, Store = 62,
+                   AccessChain = 65, InBoundsAccessChain = 66, Decorate = 71, MemberDecorate = 72,
+                   VectorShuffle = 79, CompositeConstruct = 80, CompositeExtract = 81, CopyObject = 83,
+                   Transpose = 84, ImageSampleImplicitLod = 87, ImageSampleExplicitLod = 88,
+                   ConvertSToF = 111, ConvertUToF = 112, ImageSampleProjImplicitLod = 91,
+                   FNegate = 127, FAdd = 129, FSub = 131, FMul = 133, FDiv = 136, VectorTimesScalar = 142,
+                   VectorTimesMatrix = 144, MatrixTimesVector = 145, Dot = 148, LogicalNot = 168,
+                   Select = 169, FOrdEqual = 180, FUnordGreaterThanEqual = 191, Label = 248, Return = 253, SelectionMerge = 247, LoopMerge = 246, Branch = 249,
+                   BranchConditional = 250, Kill = 252,
+                   NoLine = 317, DecorateString = 5632;
+}  // namespace op
+namespace decoration {
+constexpr uint32_t RowMajor = 4, BuiltIn = 11, Binding = 33, UserSemantic = 5635;
+}
+namespace glsl {  // GLSL.std.450
+constexpr uint32_t FAbs = 4, Floor = 8, Fract = 10, Sin = 13, Cos = 14, Pow = 26, Exp = 27, Log = 28, Exp2 = 29,
+                   Log2 = 30, Sqrt = 31, InverseSqrt = 32, FMin = 37, FMax = 40, FClamp = 43, FMix = 46,
+                   Step = 48, Fma = 50, Length = 66, Distance = 67, Cross = 68, Normalize = 69;
+}
+constexpr uint32_t kStorageUniformConstant = 0, kStorageInput = 1, kStorageUniform = 2, kStorageOutput = 3;
+constexpr uint32_t kBuiltInPosition = 0;
+constexpr int kTempCount = 12;  // r0-r11 in both vs_2_0 and ps_2_0
+
+
+struct SpirvInstruction {
+    uint32_t opcode = 0;
+    std::vector<uint32_t> words;  // operands, without the opcode word
+    isa::SourceLocation location;  // the OpLine in effect
+};
+
+// A SPIR-V type, reduced to what the back end needs.
+struct Type {
+    uint32_t opcode = 0;
+    uint32_t component_count = 1;  // vector size; matrix column count; array length
+    uint32_t element = 0;          // vector: scalar type; matrix: column type; array/pointer: element
+    uint32_t storage = 0;          // pointer storage class
+    uint32_t image_dim = 0;        // sampled image: the image's Dim
+    std::vector<uint32_t> members;  // struct
+};
+
+// How a value is held. `swizzle[p]` is the register component that dest component p reads (for a
+// scalar, [0] is broadcast).
+struct Value {
+    enum class Kind { None, Register, Matrix, Sampler, Condition, Pointer } kind = Kind::None;
+    char file = 'r';  // r, c, v, t
+    int index = 0;
+    std::array<uint8_t, 4> swizzle{0, 1, 2, 3};
+    uint32_t count = 4;
+    bool negate = false;
+    // Matrix in constant registers: `vectors` registers from `index`, each one SPIR-V column when
+    // `registers_are_columns`, else one row; `columns` x `rows` in SPIR-V terms.
+    uint32_t columns = 0, rows = 0;
+    bool registers_are_columns = true;
+    // Sampler: s# and dcl type; Condition: comparison opcode and operand ids (negated by `negate`).
+    int sampler = 0;
+    uint32_t compare = 0, lhs = 0, rhs = 0;
+    // Pointer: the variable, its storage class and the constant register reached so far.
+    uint32_t variable = 0, pointee = 0, storage = 0;
+    bool row_major = false;  // Pointer into a RowMajor-decorated member
+    int component = -1;      // Pointer to one component of a vector
+};
+
+struct CompileError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+Value component_view(const Value& v, uint32_t component) {
+    if (component >= 4) throw CompileError("a vector component past .w (or an undefined shuffle component)");
+    Value out = v;
+    out.count = 1;
+    out.swizzle = {v.swizzle[component], 0, 0, 0};
+    return out;
+}
+
+std::string format_float(float f) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", static_cast<double>(f));
+    std::string text = buf;
+    if (text.find_first_of("eni") != std::string::npos) {  // exponent, inf, nan: the raw bits
+        uint32_t bits;
+        std::memcpy(&bits, &f, 4);
+        std::snprintf(buf, sizeof buf, "0x%08X", bits);
+        text = buf;
+    }
+    return text;
+}
+
+const char* kComponents = "xyzw";
+
+// The semantic name split into letters and index: "TEXCOORD3" -> ("TEXCOORD", 3).
+std::pair<std::string, int> split_semantic(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](char c) { return static_cast<char>(std::toupper(static_cast<unsigned char>(c))); });
+    size_t digits = s.size();
+    while (digits > 0 && std::isdigit(static_cast<unsigned char>(s[digits - 1]))) --digits;
+    int index = 0;
+    if (digits < s.size() && s.size() - digits <= 3) index = std::stoi(s.substr(digits));
+    s.resize(digits);
+    if (s.rfind("SV_", 0) == 0) s = s.substr(3);
+    return {s, index};
+}
+
+class Backend {
+public:
+    Backend(const std::vector<uint32_t>& spirv, std::string_view source, const CompileOptions& options)
+        : spirv_(spirv), source_(source), options_(options), pixel_(options.stage == isa::ShaderType::Pixel) {}
+
+    AssemblyOutput run() {
+        AssemblyOutput out;
+        try {
+            parse();
+            generate();
+            finish(out);
+        } catch (const CompileError& e) {
+            fail(out, e.what());
+        } catch (const std::exception& e) {  // a SPIR-V shape this back end did not expect
+            fail(out, std::string("internal error: unsupported SPIR-V (") + e.what() + ")");
+        }
+        return out;
+    }
+
+private:
+    void fail(AssemblyOutput& out, const std::string& message) const {
+        out.text.clear();
+        out.origin.clear();
+        out.diagnostics.push_back({assembler::Severity::Error, options_.file_name, location_.line, location_.column, message});
+    }
+
+    // ---- reading the module -------------------------------------------------------------------
+    void parse() {
+        if (spirv_.size() < 5) throw CompileError("internal error: empty SPIR-V module");
+        entry_location_ = find_entry_location();
+        location_ = entry_location_;
+        isa::SourceLocation line;
+        bool in_function = false;
+        for (size_t i = 5; i < spirv_.size();) {
+            const uint32_t count = spirv_[i] >> 16, opcode = spirv_[i] & 0xFFFF;
+            if (count == 0 || i + count > spirv_.size()) throw CompileError("internal error: malformed SPIR-V");
+            SpirvInstruction ins{opcode, {spirv_.begin() + static_cast<long>(i) + 1, spirv_.begin() + static_cast<long>(i + count)}, line};
+            i += count;
+            switch (opcode) {
+            case op::Line:
+                if (ins.words.size() >= 3 && ins.words[1] > 0)
+                    line = {ins.words[1], std::max<uint32_t>(ins.words[2], 1)};
+                continue;
+            case op::NoLine: continue;
+            case op::EntryPoint:
+                entry_function_ = ins.words.at(1);
+                for (size_t k = 2; k < ins.words.size(); ++k)
+                    if ((ins.words[k] >> 24) == 0 && (ins.words[k] & 0xFF) == 0) {
+                        interface_.assign(ins.words.begin() + static_cast<long>(k) + 1, ins.words.end());
+                        break;
+                    }
+                break;
+            case op::Decorate:
+                if (ins.words.size() >= 3) decorations_[ins.words[0]][ins.words[1]] = ins.words[2];
+                else if (ins.words.size() == 2) decorations_[ins.words[0]][ins.words[1]] = 1;
+                break;
+            case op::DecorateString:
+                if (ins.words.size() >= 3 && ins.words[1] == decoration::UserSemantic)
+                    semantics_[ins.words[0]] = literal_string(ins.words, 2);
+                break;
+            case op::MemberDecorate:
+                if (ins.words.size() >= 3) member_decorations_[ins.words[0]][ins.words[1]].insert(ins.words[2]);
+                break;
+            case op::Function: in_function = ins.words.at(1) == entry_function_ || in_function; break;
+            case op::FunctionEnd: in_function = false; break;
+            default: break;
+            }
+            if (opcode >= op::TypeVoid && opcode <= op::TypePointer) read_type(ins);
+            if (opcode == op::Constant || opcode == op::ConstantComposite || opcode == op::ConstantNull ||
+                opcode == op::ConstantTrue || opcode == op::ConstantFalse || opcode == op::Undef)
+                constants_[ins.words.at(1)] = ins;
+            if (opcode == op::Variable) variables_[ins.words.at(1)] = {ins.words.at(0), ins.words.at(2)};
+            if (in_function && opcode != op::Function) body_.push_back(std::move(ins));
+        }
+        if (body_.empty()) throw CompileError("entry point '" + options_.entry_point + "' has no body");
+    }
+
+    static std::string literal_string(const std::vector<uint32_t>& words, size_t from) {
+        std::string s;
+        for (size_t k = from; k < words.size(); ++k)
+            for (int b = 0; b < 4; ++b) {
+                const char c = static_cast<char>((words[k] >> (8 * b)) & 0xFF);
+                if (c == 0) return s;
+                s += c;
+            }
+        return s;
+    }
+
+    void read_type(const SpirvInstruction& ins) {
+        Type t;
+        t.opcode = ins.opcode;
+        const auto& w = ins.words;
+        switch (ins.opcode) {
+        case op::TypeVector:
+        case op::TypeMatrix: t.element = w.at(1); t.component_count = w.at(2); break;
+        case op::TypeArray: t.element = w.at(1); t.component_count = constant_int(w.at(2)); break;
+        case op::TypePointer: t.storage = w.at(1); t.element = w.at(2); break;
+        case op::TypeStruct: t.members.assign(w.begin() + 1, w.end()); break;
+        case op::TypeImage: t.image_dim = w.at(2); break;
+        case op::TypeSampledImage: t.image_dim = types_.at(w.at(1)).image_dim; break;
+        default: break;
+        }
+        types_[w.at(0)] = t;
+    }
+
+    uint32_t constant_int(uint32_t id) const {
+        auto it = constants_.find(id);
+        if (it == constants_.end() || it->second.opcode != op::Constant)
+            throw CompileError("an index that is not a compile-time constant (SM2 has no indexing by run-time values here)");
+        return it->second.words.at(2);
+    }
+
+    // Where `main(` (the entry point) is written, for errors about the whole program.
+    isa::SourceLocation find_entry_location() const {
+        const std::string name = options_.entry_point;
+        size_t pos = 0;
+        while ((pos = source_.find(name, pos)) != std::string_view::npos) {
+            size_t after = pos + name.size();
+            while (after < source_.size() && (source_[after] == ' ' || source_[after] == '\t')) ++after;
+            const bool word_start = pos == 0 || !(std::isalnum(static_cast<unsigned char>(source_[pos - 1])) || source_[pos - 1] == '_');
+            if (word_start && after < source_.size() && source_[after] == '(') {
+                uint32_t line = 1, column = 1;
+                for (size_t k = 0; k < pos; ++k) {
+                    if (source_[k] == '\n') { ++line; column = 1; } else { ++column; }
+                }
+                return {line, column};
+            }
+            pos = after;
+        }
+        return {1, 1};
+    }
+
+    uint32_t type_of_value_components(uint32_t type_id) const {
+        const Type& t = types_.at(type_id);
+        if (t.opcode == op::TypeVector) return t.component_count;
+        if (t.opcode == op::TypeFloat || t.opcode == op::TypeBool || t.opcode == op::TypeInt) return 1;
+        throw CompileError("a value of a type SM2 registers cannot hold here (struct, array or matrix expression)");
+    }
+
+    // Constant registers per value of this type, HLSL/D3D9 style: one per vector, one per matrix
+    // register vector, arrays element by element.
+    uint32_t register_size(uint32_t type_id, bool row_major) const {
+        const Type& t = types_.at(type_id);
+        switch (t.opcode) {
+        case op::TypeMatrix: return row_major ? types_.at(t.element).component_count : t.component_count;
+        case op::TypeArray: return t.component_count * register_size(t.element, row_major);
+        case op::TypeStruct: {
+            uint32_t n = 0;
+            for (uint32_t m : t.members) n += register_size(m, false);
+            return n;
+        }
+        default: return 1;
+        }
+    }
+
+    // ---- registers ------------------------------------------------------------------------------
+    int allocate_temp() {
+        for (int r = 0; r < kTempCount; ++r)
+            if (!temp_busy_[static_cast<size_t>(r)]) {
+                temp_busy_[static_cast<size_t>(r)] = true;
+                temp_holders_[r] = 0;
+                max_temp_ = std::max(max_temp_, r + 1);
+                return r;
+            }
+        throw CompileError("the shader needs more than the " + std::to_string(kTempCount) + " temporary registers r0-r" +
+                           std::to_string(kTempCount - 1) + " of " + profile() + " at this point");
+    }
+    Value new_temp(uint32_t count) {
+        Value v;
+        v.kind = Value::Kind::Register;
+        v.file = 'r';
+        v.index = allocate_temp();
+        v.count = count;
+        scratch_.push_back(v.index);
+        return v;
+    }
+    std::string profile() const { return pixel_ ? "ps_2_0" : "vs_2_0"; }
+
+    // A literal in a `def` register: scalars share registers, four to a register.
+    Value literal(float f) {
+        uint32_t bits;
+        std::memcpy(&bits, &f, 4);
+        for (size_t r = 0; r < defs_.size(); ++r)
+            for (uint32_t k = 0; k < def_used_[r]; ++k)
+                if (std::memcmp(&defs_[r][k], &f, 4) == 0 && def_scalar_[r]) return def_view(r, k);
+        if (defs_.empty() || !def_scalar_.back() || def_used_.back() == 4) {
+            defs_.push_back({0, 0, 0, 0});
+            def_used_.push_back(0);
+            def_scalar_.push_back(true);
+        }
+        const size_t r = defs_.size() - 1;
+        defs_[r][def_used_[r]] = f;
+        return def_view(r, def_used_[r]++);
+    }
+    Value literal_vector(const std::array<float, 4>& values, uint32_t count) {
+        for (size_t r = 0; r < defs_.size(); ++r)
+            if (!def_scalar_[r] && std::memcmp(defs_[r].data(), values.data(), 16) == 0) return def_register(r, count);
+        defs_.push_back(values);
+        def_used_.push_back(4);
+        def_scalar_.push_back(false);
+        return def_register(defs_.size() - 1, count);
+    }
+    Value def_view(size_t r, uint32_t k) {
+        Value v = def_register(r, 1);
+        v.swizzle = {static_cast<uint8_t>(k), 0, 0, 0};
+        return v;
+    }
+    Value def_register(size_t r, uint32_t count) {
+        Value v;
+        v.kind = Value::Kind::Register;
+        v.file = 'c';
+        v.index = static_cast<int>(first_def_register_ + r);
+        v.count = count;
+        return v;
+    }
+
+    // ---- emitting -------------------------------------------------------------------------------
+    void line(const std::string& text) {
+        code_.push_back(text);
+        code_origin_.push_back(location_);
+    }
+
+    static bool swizzle_allowed_in_ps(const std::array<uint8_t, 4>& s) {
+        static constexpr std::array<std::array<uint8_t, 4>, 4> kList = {
+            {{0, 1, 2, 3}, {1, 2, 0, 3}, {2, 0, 1, 3}, {3, 2, 1, 0}}};
+        if (s[0] == s[1] && s[1] == s[2] && s[2] == s[3]) return true;
+        return std::find(kList.begin(), kList.end(), s) != kList.end();
+    }
+
+    // The swizzle `v` needs under write mask `mask`; components outside the mask are chosen so
+    // that ps_2_0's short list can match. nullopt: ps_2_0 cannot express it.
+    std::optional<std::array<uint8_t, 4>> source_swizzle(const Value& v, uint8_t mask) const {
+        std::array<int, 4> need{-1, -1, -1, -1};
+        for (int p = 0; p < 4; ++p)
+            if (mask & (1 << p)) need[static_cast<size_t>(p)] = v.count == 1 ? v.swizzle[0] : v.swizzle[static_cast<size_t>(p)];
+        // Identity first, then replicates (what one component reads best as), then the rotations.
+        std::vector<std::array<uint8_t, 4>> candidates = {{0, 1, 2, 3}};
+        for (uint8_t c = 0; c < 4; ++c) candidates.push_back({c, c, c, c});
+        candidates.insert(candidates.end(), {{1, 2, 0, 3}, {2, 0, 1, 3}, {3, 2, 1, 0}});
+        for (const auto& c : candidates) {
+            bool fits = true;
+            for (size_t p = 0; p < 4; ++p) fits = fits && (need[p] < 0 || need[p] == c[p]);
+            if (fits) return c;
+        }
+        if (pixel_) return std::nullopt;
+        std::array<uint8_t, 4> s{};
+        int last = 0;
+        for (size_t p = 0; p < 4; ++p) {  // vs: anything; fill the rest with the last component used
+            if (need[p] >= 0) last = need[p];
+            s[p] = static_cast<uint8_t>(need[p] >= 0 ? need[p] : last);
+        }
+        return s;
+    }
+
+    std::string register_name(const Value& v) const { return std::string(1, v.file) + std::to_string(v.index); }
+
+    std::string source_text(const Value& v, const std::array<uint8_t, 4>& s) const {
+        std::string text = (v.negate ? "-" : "") + register_name(v);
+        if (s != std::array<uint8_t, 4>{0, 1, 2, 3}) {
+            text += '.';
+            if (s[0] == s[1] && s[1] == s[2] && s[2] == s[3]) {
+                text += kComponents[s[0]];
+            } else {
+                for (uint8_t c : s) text += kComponents[c];
+            }
+        }
+        return text;
+    }
+
+    static std::string mask_text(uint8_t mask) {
+        if (mask == 0xF) return "";
+        std::string text = ".";
+        for (int p = 0; p < 4; ++p)
+            if (mask & (1 << p)) text += kComponents[p];
+        return text;
+    }
+
+    // `v` copied into a fresh temp so that its components sit where `mask` reads them, one mov per
+    // component when ps_2_0's swizzle list is the obstacle.
+    Value materialize(const Value& v, uint8_t mask) {
+        Value t = new_temp(4);
+        t.count = v.count == 1 ? 1 : 4;
+        const uint8_t write = v.count == 1 ? 1 : mask;
+        if (auto s = source_swizzle(v, write)) {
+            line("mov r" + std::to_string(t.index) + mask_text(write) + ", " + source_text(v, *s));
+        } else {
+            for (int p = 0; p < 4; ++p)
+                if (write & (1 << p)) {
+                    const uint8_t c = v.swizzle[static_cast<size_t>(p)];
+                    line("mov r" + std::to_string(t.index) + mask_text(static_cast<uint8_t>(1 << p)) + ", " +
+                         source_text(v, {c, c, c, c}));
+                }
+        }
+        if (v.count == 1) t.swizzle = {0, 0, 0, 0};
+        return t;
+    }
+
+    // One instruction: `dest` with `mask`; sources legalized for swizzles and read ports.
+    void emit(const std::string& mnemonic, const std::string& dest, uint8_t mask, std::vector<Value> sources,
+              bool identity_sources = false) {
+        // Read ports: at most 2 distinct c#, 1 v#, 1 t# per instruction.
+        std::map<char, std::set<int>> seen;
+        for (auto& s : sources) {
+            if (s.file == 'r') continue;
+            auto& set = seen[s.file];
+            set.insert(s.index);
+            const size_t limit = s.file == 'c' ? 2 : 1;
+            if (set.size() > limit) {
+                set.erase(s.index);
+                s = materialize(s, mask);
+            }
+        }
+        std::string text = mnemonic + " " + dest + mask_text(mask);
+        // Scalar instructions read one component, named by a replicate swizzle.
+        const bool scalar = mnemonic == "rcp" || mnemonic == "rsq" || mnemonic == "exp" || mnemonic == "log" ||
+                            mnemonic == "pow";
+        // Dot products and the vector macros read their sources' components whatever the mask.
+        const uint8_t read_mask = mnemonic == "dp4" ? 0xF
+                                  : (mnemonic == "dp3" || mnemonic == "nrm" || mnemonic == "crs") ? 0x7
+                                                                                                  : mask;
+        for (auto& s : sources) {
+            auto swizzle = source_swizzle(s, read_mask);
+            if (scalar) {
+                int p = 0;
+                while (p < 3 && !(mask & (1 << p))) ++p;
+                const uint8_t c = s.count == 1 ? s.swizzle[0] : s.swizzle[static_cast<size_t>(p)];
+                swizzle = std::array<uint8_t, 4>{c, c, c, c};
+            }
+            if (!swizzle || (identity_sources && *swizzle != std::array<uint8_t, 4>{0, 1, 2, 3})) {
+                s = materialize(s, read_mask);
+                swizzle = source_swizzle(s, read_mask);
+            }
+            text += ", " + source_text(s, *swizzle);
+        }
+        line(text);
+    }
+
+    static uint8_t mask_of(uint32_t count) { return static_cast<uint8_t>((1u << count) - 1); }
+    static std::string temp_name(const Value& v) { return "r" + std::to_string(v.index); }
+
+    // ---- the function body ----------------------------------------------------------------------
+    Value& value(uint32_t id) {
+        auto it = values_.find(id);
+        if (it != values_.end()) return it->second;
+        auto c = constants_.find(id);
+        if (c == constants_.end()) throw CompileError("internal error: SPIR-V id " + std::to_string(id) + " has no value");
+        values_[id] = constant_value(c->second);
+        return values_[id];
+    }
+
+    Value constant_value(const SpirvInstruction& c) {
+        const uint32_t type = c.words.at(0);
+        const Type& t = types_.at(type);
+        auto scalar_of = [&](uint32_t id) -> float {
+            const SpirvInstruction& s = constants_.at(id);
+            if (s.opcode != op::Constant) return 0.0f;
+            if (types_.at(s.words.at(0)).opcode == op::TypeInt) return static_cast<float>(static_cast<int32_t>(s.words.at(2)));
+            float f;
+            std::memcpy(&f, &s.words.at(2), 4);
+            return f;
+        };
+        if (t.opcode == op::TypeVector) {
+            std::array<float, 4> values{};
+            if (c.opcode == op::ConstantComposite)
+                for (uint32_t k = 0; k < t.component_count && k + 2 < c.words.size(); ++k) values[k] = scalar_of(c.words[k + 2]);
+            // A splat reads better (and shares a register) as a scalar.
+            if (std::all_of(values.begin(), values.begin() + t.component_count, [&](float x) { return std::memcmp(&x, &values[0], 4) == 0; }))
+                return literal(values[0]);
+            return literal_vector(values, t.component_count);
+        }
+        if (t.opcode == op::TypeBool) {
+            Value v;
+            v.kind = Value::Kind::Condition;
+            v.compare = c.opcode == op::ConstantTrue ? 1 : 0;
+            return v;
+        }
+        if (t.opcode == op::TypeFloat || t.opcode == op::TypeInt) return literal(c.opcode == op::Constant ? scalar_of(c.words.at(1)) : 0.0f);
+        throw CompileError("a constant of a type SM2 registers cannot hold (struct, array or matrix)");
+    }
+
+    Value as_register(uint32_t id) {
+        Value v = value(id);
+        if (v.kind != Value::Kind::Register) throw CompileError("internal error: expected a register value");
+        return v;
+    }
+
+    void define(uint32_t id, Value v) {
+        if (v.kind == Value::Kind::Register && v.file == 'r') {
+            ++temp_holders_[v.index];
+            scratch_.erase(std::remove(scratch_.begin(), scratch_.end(), v.index), scratch_.end());
+        }
+        values_[id] = v;
+    }
+
+    // Temps no value holds any more go back to the pool after each SPIR-V instruction.
+    void release_after(size_t position, std::vector<uint32_t> used) {
+        std::sort(used.begin(), used.end());
+        used.erase(std::unique(used.begin(), used.end()), used.end());  // float4(x, x, x, x) holds x once
+        for (uint32_t id : used) {
+            auto it = last_use_.find(id);
+            if (it == last_use_.end() || it->second != position) continue;
+            auto v = values_.find(id);
+            if (v != values_.end() && v->second.kind == Value::Kind::Register && v->second.file == 'r')
+                if (--temp_holders_[v->second.index] == 0) temp_busy_[static_cast<size_t>(v->second.index)] = false;
+        }
+        for (int r : scratch_) temp_busy_[static_cast<size_t>(r)] = false;
+        scratch_.clear();
+    }
+
+    // Ids an instruction reads (all operand words that name values); over-approximate is fine.
+    std::vector<uint32_t> operand_ids(const SpirvInstruction& ins) const {
+        std::vector<uint32_t> ids;
+        size_t first = 2;  // result type, result id
+        if (ins.opcode == op::Store) first = 0;
+        if (ins.opcode == op::ExtInst) first = 4;
+        for (size_t k = first; k < ins.words.size(); ++k) ids.push_back(ins.words[k]);
+        if (ins.opcode == op::VectorShuffle) ids.resize(std::min<size_t>(ids.size(), 2));
+        if (ins.opcode == op::CompositeExtract) ids.resize(std::min<size_t>(ids.size(), 1));
+        return ids;
+    }
+
+    void generate() {
+        // Uniform registers: the $Global members in declaration order, then the literals.
+        assign_uniform_registers();
+        // Last uses, with a mul folded into the add that is its only user (mad) counted at the add.
+        std::unordered_map<uint32_t, int> use_count;
+        std::unordered_map<uint32_t, size_t> definition;
+        for (size_t i = 0; i < body_.size(); ++i) {
+            for (uint32_t id : operand_ids(body_[i])) {
+                last_use_[id] = i;
+                ++use_count[id];
+            }
+            if (body_[i].words.size() >= 2) definition[body_[i].words[1]] = i;
+        }
+        for (size_t i = 0; i < body_.size(); ++i) {
+            const auto& ins = body_[i];
+            if ((ins.opcode != op::FAdd && ins.opcode != op::FSub) || ins.words.size() < 4) continue;
+            for (int k = 2; k < 4; ++k) {
+                const uint32_t id = ins.words[static_cast<size_t>(k)];
+                auto d = definition.find(id);
+                if (d == definition.end() || use_count[id] != 1) continue;
+                const auto& m = body_[d->second];
+                if (m.opcode != op::FMul && m.opcode != op::VectorTimesScalar) continue;
+                if (fused_.count(id) || fused_.count(m.words[2]) || fused_.count(m.words[3])) continue;
+                fused_.insert(id);
+                for (int j = 2; j < 4; ++j) last_use_[m.words[static_cast<size_t>(j)]] = std::max(last_use_[m.words[static_cast<size_t>(j)]], i);
+                break;
+            }
+        }
+        size_t labels = 0;
+        for (size_t i = 0; i < body_.size(); ++i) {
+            const auto& ins = body_[i];
+            location_ = ins.location.line ? ins.location : entry_location_;
+            if (ins.opcode == op::Label && ++labels > 1)
+                throw CompileError("flow control that depends on run-time values (an if, loop or discard the optimizer "
+                                   "could not flatten) is not supported by this compiler for " + profile());
+            translate(ins);
+            release_after(i, operand_ids(ins));
+            if (ins.words.size() >= 2 && !last_use_.count(ins.words[1])) {
+                auto v = values_.find(ins.words[1]);
+                if (v != values_.end() && v->second.kind == Value::Kind::Register && v->second.file == 'r' &&
+                    --temp_holders_[v->second.index] == 0)
+                    temp_busy_[static_cast<size_t>(v->second.index)] = false;
+            }
+        }
+        location_ = entry_location_;
+    }
+
+    void assign_uniform_registers() {
+        uint32_t next = 0;
+        std::set<int> bound_samplers;
+        for (const auto& [id, var] : variables_) {
+            const auto [pointer_type, storage] = var;
+            const Type& pointee = types_.at(types_.at(pointer_type).element);
+            if (storage == kStorageUniformConstant && pointee.opcode == op::TypeSampledImage) {
+                auto d = decorations_.find(id);
+                if (d != decorations_.end() && d->second.count(decoration::Binding))
+                    bound_samplers.insert(static_cast<int>(d->second.at(decoration::Binding)));
+            }
+        }
+        int next_sampler = 0;
+        for (const auto& [id, var] : variables_) {
+            const auto [pointer_type, storage] = var;
+            const uint32_t pointee_id = types_.at(pointer_type).element;
+            const Type& pointee = types_.at(pointee_id);
+            if (storage == kStorageUniform && pointee.opcode == op::TypeStruct) {
+                for (size_t m = 0; m < pointee.members.size(); ++m) {
+                    member_register_[{pointee_id, static_cast<uint32_t>(m)}] = next;
+                    const auto& md = member_decorations_[pointee_id][static_cast<uint32_t>(m)];
+                    next += register_size(pointee.members[m], md.count(decoration::RowMajor) > 0);
+                }
+            } else if (storage == kStorageUniformConstant && pointee.opcode == op::TypeSampledImage) {
+                auto d = decorations_.find(id);
+                int s;
+                if (d != decorations_.end() && d->second.count(decoration::Binding)) {
+                    s = static_cast<int>(d->second.at(decoration::Binding));
+                } else {
+                    while (bound_samplers.count(next_sampler)) ++next_sampler;
+                    s = next_sampler++;
+                }
+                if (s > 15) throw CompileError("sampler register s" + std::to_string(s) + " is past s15");
+                sampler_of_[id] = s;
+            }
+        }
+        first_def_register_ = next;
+    }
+
+    Value pointer_load(const Value& p) {
+        const Type& t = types_.at(p.pointee);
+        if (p.storage == kStorageUniform) {
+            if (t.opcode == op::TypeMatrix) {
+                Value m;
+                m.kind = Value::Kind::Matrix;
+                m.file = 'c';
+                m.index = p.index;
+                m.columns = t.component_count;
+                m.rows = types_.at(t.element).component_count;
+                m.registers_are_columns = !p.row_major;
+                return m;
+            }
+            Value v;
+            v.kind = Value::Kind::Register;
+            v.file = 'c';
+            v.index = p.index;
+            v.count = type_of_value_components(p.pointee);
+            return p.component >= 0 ? component_view(v, static_cast<uint32_t>(p.component)) : v;
+        }
+        if (p.storage == kStorageInput) {
+            Value v = input_register(p.variable);
+            v.count = type_of_value_components(p.pointee);
+            return v;
+        }
+        if (p.storage == kStorageUniformConstant && sampler_of_.count(p.variable)) {
+            Value s;
+            s.kind = Value::Kind::Sampler;
+            s.sampler = sampler_of_.at(p.variable);
+            samplers_used_[s.sampler] = t.image_dim;
+            return s;
+        }
+        throw CompileError("reading this variable is not supported (local arrays indexed at run time, or a "
+                           "resource type SM2 lacks)");
+    }
+
+    Value input_register(uint32_t variable) {
+        const uint32_t count = type_of_value_components(types_.at(variables_.at(variable).first).element);
+        auto sem = semantics_.find(variable);
+        const std::string semantic = sem != semantics_.end() ? sem->second : "";
+        Value v;
+        v.kind = Value::Kind::Register;
+        if (!pixel_) {
+            const auto pos = std::find(interface_.begin(), interface_.end(), variable);
+            int index = 0;
+            for (auto it = interface_.begin(); it != pos; ++it)
+                if (variables_.count(*it) && variables_.at(*it).second == kStorageInput) ++index;
+            v.file = 'v';
+            v.index = index;
+            if (index > 15) throw CompileError("more than 16 vertex inputs (v0-v15)");
+            static const std::map<std::string, std::string> kUsage = {
+                {"POSITION", "position"}, {"BLENDWEIGHT", "blendweight"}, {"BLENDINDICES", "blendindices"},
+                {"NORMAL", "normal"}, {"PSIZE", "psize"}, {"TEXCOORD", "texcoord"}, {"TANGENT", "tangent"},
+                {"BINORMAL", "binormal"}, {"COLOR", "color"}, {"FOG", "fog"}, {"DEPTH", "depth"}};
+            const auto [name, n] = split_semantic(semantic);
+            auto u = kUsage.find(name);
+            if (u == kUsage.end())
+                throw CompileError("vertex input semantic '" + semantic + "' has no D3D9 usage (POSITION, NORMAL, "
+                                   "TEXCOORDn, COLORn, TANGENT, BINORMAL, BLENDWEIGHT, BLENDINDICES, PSIZE, FOG)");
+            declarations_[register_name(v)] = "dcl_" + u->second + (n ? std::to_string(n) : "") + " " + register_name(v);
+            return v;
+        }
+        const auto [name, n] = split_semantic(semantic);
+        if (name == "TEXCOORD" && n <= 7) {
+            v.file = 't';
+        } else if (name == "COLOR" && n <= 1) {
+            v.file = 'v';
+        } else {
+            throw CompileError("pixel input semantic '" + semantic + "' has no ps_2_0 register (TEXCOORD0-7 are t0-t7, "
+                               "COLOR0-1 are v0-v1)");
+        }
+        v.index = n;
+        declarations_[register_name(v)] = "dcl " + register_name(v) + mask_text(mask_of(count));
+        return v;
+    }
+
+    std::pair<std::string, uint8_t> output_register(uint32_t variable, uint32_t count) {
+        auto sem = semantics_.find(variable);
+        std::string semantic = sem != semantics_.end() ? sem->second : "";
+        auto d = decorations_.find(variable);
+        if (d != decorations_.end() && d->second.count(decoration::BuiltIn) &&
+            d->second.at(decoration::BuiltIn) == kBuiltInPosition)
+            semantic = "POSITION";
+        const auto [name, n] = split_semantic(semantic);
+        if (!pixel_) {
+            if (name == "POSITION" && n == 0) return {"oPos", mask_of(count)};
+            if (name == "TEXCOORD" && n <= 7) return {"oT" + std::to_string(n), mask_of(count)};
+            if (name == "COLOR" && n <= 1) return {"oD" + std::to_string(n), mask_of(count)};
+            if (name == "FOG") return {"oFog", 0xF};
+            if (name == "PSIZE") return {"oPts", 0xF};
+            throw CompileError("vertex output semantic '" + semantic + "' has no vs_2_0 register (POSITION, TEXCOORD0-7, "
+                               "COLOR0-1, FOG, PSIZE)");
+        }
+        if ((name == "COLOR" || name == "TARGET") && n <= 3) {
+            if (count != 4) throw CompileError("pixel output " + semantic + " must be a float4 (oC# is written whole)");
+            return {"oC" + std::to_string(n), 0xF};
+        }
+        if (name == "DEPTH" && n == 0) return {"oDepth", 0xF};
+        throw CompileError("pixel output semantic '" + semantic + "' has no ps_2_0 register (COLOR0-3, DEPTH)");
+    }
+
+    void translate(const SpirvInstruction& ins) {
+        const auto& w = ins.words;
+        auto result_count = [&] { return type_of_value_components(w.at(0)); };
+        switch (ins.opcode) {
+        case op::Label:
+        case op::Return:
+        case op::FunctionEnd:
+        case op::Variable: return;
+        case op::Load: {
+            define(w.at(1), pointer_load(pointer_of(w.at(2))));
+            return;
+        }
+        case op::AccessChain:
+        case op::InBoundsAccessChain: {
+            Value p = pointer_of(w.at(2));
+            for (size_t k = 3; k < w.size(); ++k) p = step_pointer(p, constant_int(w[k]));
+            define(w.at(1), p);
+            return;
+        }
+        case op::Store: {
+            const Value& p = pointer_of(w.at(0));
+            if (p.storage != kStorageOutput) throw CompileError("writing a variable other than an output (local arrays indexed at run time) is not supported");
+            Value v = as_register(w.at(1));
+            const auto [reg, mask] = output_register(p.variable, v.count);
+            if (reg == "oDepth" || reg == "oFog" || reg == "oPts") {
+                emit("mov", reg, 0xF, {component_view(v, 0)});
+            } else {
+                emit("mov", reg, mask, {v}, reg[1] == 'C');
+            }
+            return;
+        }
+        case op::CopyObject: define(w.at(1), value(w.at(2))); return;
+        case op::CompositeExtract: {
+            const Value v = value(w.at(2));
+            if (v.kind == Value::Kind::Register) {
+                define(w.at(1), component_view(v, w.at(3)));
+                return;
+            }
+            if (v.kind == Value::Kind::Matrix && w.size() == 4) {
+                define(w.at(1), matrix_column(v, w.at(3)));
+                return;
+            }
+            throw CompileError("extracting from this value (a struct or array expression) is not supported");
+        }
+        case op::VectorShuffle: {
+            const Value a = as_register(w.at(2)), b = as_register(w.at(3));
+            std::vector<Value> parts;
+            for (size_t k = 4; k < w.size(); ++k) {
+                const uint32_t c = w[k];
+                parts.push_back(c < a.count ? component_view(a, c) : component_view(b, c - a.count));
+            }
+            define(w.at(1), construct(parts));
+            return;
+        }
+        case op::CompositeConstruct: {
+            std::vector<Value> parts;
+            for (size_t k = 2; k < w.size(); ++k) {
+                const Value p = as_register(w[k]);
+                for (uint32_t c = 0; c < p.count; ++c) parts.push_back(component_view(p, c));
+            }
+            define(w.at(1), construct(parts));
+            return;
+        }
+        case op::FNegate: {
+            Value v = as_register(w.at(2));
+            v.negate = !v.negate;
+            define(w.at(1), v);
+            return;
+        }
+        case op::FAdd:
+        case op::FSub: {
+            const bool a_fused = fused_.count(w.at(2)) > 0, b_fused = fused_.count(w.at(3)) > 0;
+            if (a_fused || b_fused) {
+                Value a = a_fused ? Value{} : as_register(w.at(2)), b = b_fused ? Value{} : as_register(w.at(3));
+                if (ins.opcode == op::FSub && !b_fused) b.negate = !b.negate;
+                const uint32_t mul_id = a_fused ? w.at(2) : w.at(3);
+                Value addend = a_fused ? b : a;
+                const bool negate_product = !a_fused && ins.opcode == op::FSub;
+                auto [x, y] = fused_operands_.at(mul_id);
+                if (negate_product) x.negate = !x.negate;
+                Value d = new_temp(result_count());
+                emit("mad", temp_name(d), mask_of(d.count), {x, y, addend});
+                define(w.at(1), d);
+                return;
+            }
+            Value a = as_register(w.at(2)), b = as_register(w.at(3));
+            if (ins.opcode == op::FSub) b.negate = !b.negate;
+            binary("add", w.at(1), result_count(), a, b);
+            return;
+        }
+        case op::FMul:
+        case op::VectorTimesScalar: {
+            if (fused_.count(w.at(1))) {
+                fused_operands_[w.at(1)] = {as_register(w.at(2)), as_register(w.at(3))};
+                return;
+            }
+            binary("mul", w.at(1), result_count(), as_register(w.at(2)), as_register(w.at(3)));
+            return;
+        }
+        case op::FDiv: {
+            const Value a = as_register(w.at(2)), b = as_register(w.at(3));
+            Value r = new_temp(b.count);
+            for (uint32_t c = 0; c < b.count; ++c)
+                emit("rcp", temp_name(r), static_cast<uint8_t>(1 << c), {component_view(b, c)});
+            binary("mul", w.at(1), result_count(), a, r);
+            return;
+        }
+        case op::Dot: define(w.at(1), dot(as_register(w.at(2)), as_register(w.at(3)))); return;
+        case op::MatrixTimesVector:
+        case op::VectorTimesMatrix: {
+            const bool matrix_first = ins.opcode == op::MatrixTimesVector;
+            Value m = value(w.at(matrix_first ? 2 : 3));
+            const Value v = as_register(w.at(matrix_first ? 3 : 2));
+            if (m.kind != Value::Kind::Matrix) throw CompileError("only uniform matrices can be multiplied (mul) here");
+            // M * v dots v with M's rows; v * M with M's columns.
+            if (matrix_first) {
+                std::swap(m.columns, m.rows);
+                m.registers_are_columns = !m.registers_are_columns;
+            }
+            define(w.at(1), vector_times_matrix(v, m));
+            return;
+        }
+        case op::Transpose: {
+            Value m = value(w.at(2));
+            if (m.kind != Value::Kind::Matrix) throw CompileError("transpose of a non-uniform matrix is not supported");
+            std::swap(m.columns, m.rows);
+            m.registers_are_columns = !m.registers_are_columns;
+            define(w.at(1), m);
+            return;
+        }
+        case op::LogicalNot: {
+            Value c = value(w.at(2));
+            if (c.kind != Value::Kind::Condition) throw CompileError("boolean logic beyond one comparison is not supported");
+            c.negate = !c.negate;
+            for (uint32_t operand : {c.lhs, c.rhs})  // the comparison's operands live as long as the negation
+                if (operand != 0) last_use_[operand] = std::max(last_use_[operand], last_use_[w.at(1)]);
+            define(w.at(1), c);
+            return;
+        }
+        case op::Select: {
+            const Value c = value(w.at(2));
+            if (c.kind != Value::Kind::Condition) throw CompileError("a condition SM2 cannot evaluate without branches");
+            define(w.at(1), select(c, as_register(w.at(3)), as_register(w.at(4)), result_count()));
+            return;
+        }
+        case op::ImageSampleExplicitLod:
+            throw CompileError(pixel_ ? "texture sampling with an explicit level (tex2Dlod) needs ps_3_0"
+                                      : "texture sampling in a vertex shader needs vs_3_0 (vs_2_0 has no texld)");
+        case op::ConvertSToF:
+        case op::ConvertUToF: define(w.at(1), value(w.at(2))); return;  // SM2 holds integers as floats
+        case op::ImageSampleImplicitLod:
+        case op::ImageSampleProjImplicitLod: {
+            if (!pixel_) throw CompileError("texture sampling in a vertex shader needs vs_3_0 (vs_2_0 has no texld)");
+            if (w.size() > 4) throw CompileError("texture sampling with bias, offsets or gradients is not supported");
+            const Value s = value(w.at(2));
+            if (s.kind != Value::Kind::Sampler) throw CompileError("internal error: sampling without a sampler");
+            Value coord = as_register(w.at(3));
+            if (!(coord.file == 'r' || coord.file == 't') || coord.negate ||
+                coord.swizzle != std::array<uint8_t, 4>{0, 1, 2, 3} || coord.count == 1)
+                coord = materialize(coord, mask_of(std::max<uint32_t>(coord.count, 2)));
+            Value d = new_temp(4);
+            line(std::string(ins.opcode == op::ImageSampleProjImplicitLod ? "texldp " : "texld ") + temp_name(d) +
+                 ", " + register_name(coord) + ", s" + std::to_string(s.sampler));
+            define(w.at(1), d);
+            return;
+        }
+        case op::ExtInst: extended(ins); return;
+        case op::SelectionMerge:
+        case op::LoopMerge:
+        case op::Branch:
+        case op::BranchConditional:
+        case op::Kill:
+            throw CompileError("flow control that depends on run-time values (an if, loop or discard the optimizer "
+                               "could not flatten) is not supported by this compiler for " + profile());
+        default: break;
+        }
+        if (ins.opcode >= op::FOrdEqual && ins.opcode <= op::FUnordGreaterThanEqual) {
+            Value c;
+            c.kind = Value::Kind::Condition;
+            c.compare = ins.opcode;
+            c.lhs = w.at(2);
+            c.rhs = w.at(3);
+            last_use_[c.lhs] = std::max(last_use_[c.lhs], last_use_[w.at(1)]);
+            last_use_[c.rhs] = std::max(last_use_[c.rhs], last_use_[w.at(1)]);
+            define(w.at(1), c);
+            return;
+        }
+        throw CompileError("this operation (SPIR-V opcode " + std::to_string(ins.opcode) +
+                           ") has no SM2 translation in this compiler (integer or bit arithmetic, derivatives, "
+                           "dynamic indexing, ...)");
+    }
+
+    Value pointer_of(uint32_t id) {
+        auto it = values_.find(id);
+        if (it != values_.end() && it->second.kind == Value::Kind::Pointer) return it->second;
+        auto var = variables_.find(id);
+        if (var == variables_.end()) throw CompileError("internal error: not a pointer");
+        Value p;
+        p.kind = Value::Kind::Pointer;
+        p.variable = id;
+        p.storage = var->second.second;
+        p.pointee = types_.at(var->second.first).element;
+        p.index = 0;
+        return p;
+    }
+
+    Value step_pointer(Value p, uint32_t index) {
+        const Type& t = types_.at(p.pointee);
+        if (p.storage != kStorageUniform)
+            throw CompileError("indexing an input, output or local array is not supported");
+        if (t.opcode == op::TypeStruct) {
+            if (index >= t.members.size()) throw CompileError("internal error: member out of range");
+            p.index = static_cast<int>(member_register_.at({p.pointee, index}));
+            const auto& md = member_decorations_[p.pointee][index];
+            p.row_major = md.count(decoration::RowMajor) > 0;
+            p.pointee = t.members[index];
+        } else if (t.opcode == op::TypeArray) {
+            if (index >= t.component_count) throw CompileError("array index " + std::to_string(index) + " is out of range");
+            p.index += static_cast<int>(index * register_size(t.element, p.row_major));
+            p.pointee = t.element;
+        } else if (t.opcode == op::TypeMatrix) {
+            if (p.row_major) throw CompileError("a column of a row_major matrix is not supported here; use the whole matrix");
+            p.index += static_cast<int>(index);
+            p.pointee = t.element;
+        } else if (t.opcode == op::TypeVector && index < t.component_count) {
+            p.component = static_cast<int>(index);
+            p.pointee = t.element;
+        } else {
+            throw CompileError("indexing this uniform is not supported");
+        }
+        if (p.index > (pixel_ ? 31 : 255)) throw CompileError("uniforms need more constant registers than " + profile() + " has");
+        return p;
+    }
+
+    Value matrix_column(const Value& m, uint32_t j) {
+        Value reg;
+        reg.kind = Value::Kind::Register;
+        reg.file = 'c';
+        if (m.registers_are_columns) {
+            reg.index = m.index + static_cast<int>(j);
+            reg.count = m.rows;
+            return reg;
+        }
+        std::vector<Value> parts;
+        for (uint32_t i = 0; i < m.rows; ++i) {
+            reg.index = m.index + static_cast<int>(i);
+            reg.count = 4;
+            parts.push_back(component_view(reg, j));
+        }
+        return construct(parts);
+    }
+
+    // Components gathered into one value: a view when they all come from one register, else a
+    // temp filled by masked movs (one per run of components from the same register).
+    Value construct(const std::vector<Value>& parts) {
+        if (parts.size() > 4 || parts.empty()) throw CompileError("internal error: vector of more than 4 components");
+        bool same = true;
+        for (const auto& p : parts)
+            same = same && p.file == parts[0].file && p.index == parts[0].index && p.negate == parts[0].negate;
+        if (same) {
+            Value v = parts[0];
+            v.count = static_cast<uint32_t>(parts.size());
+            for (size_t k = 0; k < parts.size(); ++k) v.swizzle[k] = parts[k].swizzle[0];
+            for (size_t k = parts.size(); k < 4; ++k) v.swizzle[k] = v.swizzle[parts.size() - 1];
+            return v;
+        }
+        Value d = new_temp(static_cast<uint32_t>(parts.size()));
+        std::vector<bool> done(parts.size(), false);
+        for (size_t k = 0; k < parts.size(); ++k) {
+            if (done[k]) continue;
+            Value source = parts[k];
+            source.count = 4;
+            uint8_t mask = 0;
+            for (size_t j = k; j < parts.size(); ++j)
+                if (!done[j] && parts[j].file == parts[k].file && parts[j].index == parts[k].index &&
+                    parts[j].negate == parts[k].negate) {
+                    source.swizzle[j] = parts[j].swizzle[0];
+                    mask = static_cast<uint8_t>(mask | (1 << j));
+                    done[j] = true;
+                }
+            emit("mov", temp_name(d), mask, {source});
+        }
+        return d;
+    }
+
+    void binary(const std::string& mnemonic, uint32_t result, uint32_t count, const Value& a, const Value& b) {
+        Value d = new_temp(count);
+        emit(mnemonic, temp_name(d), mask_of(count), {a, b});
+        define(result, d);
+    }
+
+    Value dot(const Value& a, const Value& b) {
+        Value d = new_temp(1);
+        if (a.count == 4 || a.count == 3) {
+            emit(a.count == 4 ? "dp4" : "dp3", temp_name(d), 1, {a, b});
+        } else {
+            emit("mul", temp_name(d), 1, {component_view(a, 0), component_view(b, 0)});
+            for (uint32_t c = 1; c < a.count; ++c)
+                emit("mad", temp_name(d), 1, {component_view(a, c), component_view(b, c), d});
+        }
+        d.swizzle = {0, 0, 0, 0};
+        return d;
+    }
+
+    // v * M, M with `rows` = v's size and `columns` = the result's.
+    Value vector_times_matrix(const Value& v, const Value& m) {
+        Value d = new_temp(m.columns);
+        Value reg;
+        reg.kind = Value::Kind::Register;
+        reg.file = 'c';
+        if (m.registers_are_columns) {  // result.j = dot(v, column j): one dp per component
+            for (uint32_t j = 0; j < m.columns; ++j) {
+                reg.index = m.index + static_cast<int>(j);
+                reg.count = m.rows;
+                const uint8_t bit = static_cast<uint8_t>(1 << j);
+                if (m.rows >= 3) {
+                    emit(m.rows == 4 ? "dp4" : "dp3", temp_name(d), bit, {v, reg});
+                } else {
+                    Value t = dot(v, reg);
+                    emit("mov", temp_name(d), bit, {t});
+                }
+            }
+        } else {  // result = sum_i v.i * row i
+            for (uint32_t i = 0; i < m.rows; ++i) {
+                reg.index = m.index + static_cast<int>(i);
+                reg.count = m.columns;
+                if (i == 0)
+                    emit("mul", temp_name(d), mask_of(m.columns), {reg, component_view(v, 0)});
+                else
+                    emit("mad", temp_name(d), mask_of(m.columns), {reg, component_view(v, i), d});
+            }
+        }
+        return d;
+    }
+
+    // select(condition, x, y) with cmp (ps: src0 >= 0 ? src1 : src2) or sge/slt and lrp (vs).
+    Value select(const Value& c, const Value& x, const Value& y, uint32_t count) {
+        Value d = new_temp(count);
+        const uint8_t mask = mask_of(count);
+        if (c.lhs == 0) {  // a constant condition the optimizer left
+            emit("mov", temp_name(d), mask, {c.compare ^ (c.negate ? 1u : 0u) ? x : y});
+            return d;
+        }
+        const Value a = as_register(c.lhs), b = as_register(c.rhs);
+        // Normalize to "a >= b" (taken = x) or "a > b" forms.
+        const uint32_t base = c.compare - (c.compare - op::FOrdEqual) % 2;  // ordered and unordered alike
+        bool swap_operands = false, swap_results = c.negate, equality = false;
+        switch (base) {
+        case op::FOrdEqual: equality = true; break;
+        case op::FOrdEqual + 2: equality = true; swap_results = !swap_results; break;  // !=
+        case op::FOrdEqual + 4: swap_results = !swap_results; break;  // a < b: !(a >= b)
+        case op::FOrdEqual + 6: swap_operands = true; swap_results = !swap_results; break;  // a > b: !(b >= a)
+        case op::FOrdEqual + 8: swap_operands = true; break;  // a <= b: b >= a
+        default: break;  // a >= b
+        }
+        const Value& first = swap_operands ? b : a;
+        Value second = swap_operands ? a : b;
+        const Value& taken = swap_results ? y : x;
+        const Value& other = swap_results ? x : y;
+        const uint32_t n = std::max(a.count, b.count);
+        Value diff = new_temp(n);
+        second.negate = !second.negate;
+        emit("add", temp_name(diff), mask_of(n), {first, second});  // first - second
+        if (n == 1) diff.swizzle = {0, 0, 0, 0};
+        if (pixel_) {
+            if (equality) {  // -(a-b)^2 >= 0 only when a == b
+                Value neg = diff;
+                neg.negate = true;
+                emit("mul", temp_name(diff), mask_of(n), {neg, diff});
+            }
+            emit("cmp", temp_name(d), mask, {diff, taken, other});
+            return d;
+        }
+        if (equality) throw CompileError("== and != comparisons are not supported in vs_2_0 by this compiler");
+        Value zero = literal(0.0f);
+        Value t = new_temp(n);
+        emit("sge", temp_name(t), mask_of(n), {diff, zero});  // 1 where first >= second
+        if (n == 1) t.swizzle = {0, 0, 0, 0};
+        emit("lrp", temp_name(d), mask, {t, taken, other});
+        return d;
+    }
+
+    // A scalar instruction (rcp, rsq, exp, log, pow) once per component.
+    Value per_component(const std::string& mnemonic, const Value& a, const Value* b, uint32_t count) {
+        Value d = new_temp(count);
+        for (uint32_t c = 0; c < count; ++c) {
+            std::vector<Value> sources = {component_view(a, a.count == 1 ? 0 : c)};
+            if (b) sources.push_back(component_view(*b, b->count == 1 ? 0 : c));
+            emit(mnemonic, temp_name(d), static_cast<uint8_t>(1 << c), sources);
+        }
+        return d;
+    }
+
+    void extended(const SpirvInstruction& ins) {
+        const auto& w = ins.words;
+        const uint32_t result = w.at(1), count = type_of_value_components(w.at(0));
+        const uint32_t which = w.at(3);
+        auto arg = [&](size_t k) { return as_register(w.at(4 + k)); };
+        const uint8_t mask = mask_of(count);
+        switch (which) {
+        case glsl::FAbs: {
+            Value d = new_temp(count);
+            emit("abs", temp_name(d), mask, {arg(0)});
+            define(result, d);
+            return;
+        }
+        case glsl::Fract: {
+            Value d = new_temp(count);
+            emit("frc", temp_name(d), mask, {arg(0)});
+            define(result, d);
+            return;
+        }
+        case glsl::Floor: {
+            Value f = new_temp(count);
+            emit("frc", temp_name(f), mask, {arg(0)});
+            f.negate = true;
+            binary("add", result, count, arg(0), f);
+            return;
+        }
+        case glsl::FMin: binary("min", result, count, arg(0), arg(1)); return;
+        case glsl::FMax: binary("max", result, count, arg(0), arg(1)); return;
+        case glsl::FClamp: {
+            Value d = new_temp(count);
+            const Value lo = arg(1), hi = arg(2);
+            if (pixel_ && is_literal(w.at(5), 0.0f) && is_literal(w.at(6), 1.0f)) {
+                emit("mov_sat", temp_name(d), mask, {arg(0)});  // saturate()
+            } else {
+                emit("max", temp_name(d), mask, {arg(0), lo});
+                emit("min", temp_name(d), mask, {d, hi});
+            }
+            define(result, d);
+            return;
+        }
+        case glsl::FMix: {  // mix(x, y, t) = t * (y - x) + x = lrp t, y, x
+            Value d = new_temp(count);
+            emit("lrp", temp_name(d), mask, {arg(2), arg(1), arg(0)});
+            define(result, d);
+            return;
+        }
+        case glsl::Fma: {
+            Value d = new_temp(count);
+            emit("mad", temp_name(d), mask, {arg(0), arg(1), arg(2)});
+            define(result, d);
+            return;
+        }
+        case glsl::InverseSqrt: define(result, per_component("rsq", arg(0), nullptr, count)); return;
+        case glsl::Sqrt: {
+            const Value r = per_component("rsq", arg(0), nullptr, count);
+            define(result, per_component("rcp", r, nullptr, count));
+            return;
+        }
+        case glsl::Exp2: define(result, per_component("exp", arg(0), nullptr, count)); return;
+        case glsl::Log2: define(result, per_component("log", arg(0), nullptr, count)); return;
+        case glsl::Exp: {  // e^x = 2^(x * log2(e))
+            Value t = new_temp(count);
+            emit("mul", temp_name(t), mask, {arg(0), literal(1.44269504f)});
+            define(result, per_component("exp", t, nullptr, count));
+            return;
+        }
+        case glsl::Log: {  // ln x = log2(x) * ln(2)
+            const Value l = per_component("log", arg(0), nullptr, count);
+            binary("mul", result, count, l, literal(0.693147182f));
+            return;
+        }
+        case glsl::Pow: {
+            const Value y = arg(1);
+            define(result, per_component("pow", arg(0), &y, count));
+            return;
+        }
+        case glsl::Length:
+        case glsl::Distance: {
+            Value v = arg(0);
+            if (which == glsl::Distance) {
+                Value b = arg(1);
+                b.negate = !b.negate;
+                Value diff = new_temp(v.count);
+                emit("add", temp_name(diff), mask_of(v.count), {v, b});
+                v = diff;
+            }
+            const Value squared = dot(v, v);
+            const Value r = per_component("rsq", squared, nullptr, 1);
+            define(result, per_component("rcp", r, nullptr, 1));
+            return;
+        }
+        case glsl::Normalize: {
+            const Value v = arg(0);
+            Value d = new_temp(count);
+            if (count == 3) {
+                emit("nrm", temp_name(d), 0x7, {v}, true);
+            } else {
+                Value r = dot(v, v);
+                emit("rsq", temp_name(r), 1, {r});
+                emit("mul", temp_name(d), mask, {v, r});
+            }
+            define(result, d);
+            return;
+        }
+        case glsl::Cross: {
+            Value d = new_temp(3);
+            emit("crs", temp_name(d), 0x7, {arg(0), arg(1)}, true);
+            define(result, d);
+            return;
+        }
+        case glsl::Step: {  // step(edge, x) = x >= edge ? 1 : 0
+            Value c;
+            c.kind = Value::Kind::Condition;
+            c.compare = op::FUnordGreaterThanEqual - 1;
+            c.lhs = w.at(5);
+            c.rhs = w.at(4);
+            define(result, select(c, literal(1.0f), literal(0.0f), count));
+            return;
+        }
+        case glsl::Sin:
+        case glsl::Cos: {
+            // sincos wants -pi..pi: x / 2pi + 0.5, frc, * 2pi - pi.
+            Value t = new_temp(count);
+            emit("mad", temp_name(t), mask, {arg(0), literal(0.159154937f), literal(0.5f)});
+            emit("frc", temp_name(t), mask, {t});
+            emit("mad", temp_name(t), mask, {t, literal(6.28318548f), literal(-3.14159274f)});
+            const Value k1 = literal_vector({-1.5500992e-006f, -2.1701389e-005f, 0.0026041667f, 0.00026041668f}, 4);
+            const Value k2 = literal_vector({-0.020833334f, -0.125f, 1.0f, 0.5f}, 4);
+            Value d = new_temp(count);
+            const uint8_t bit = which == glsl::Cos ? 1 : 2;  // sincos writes cos in .x, sin in .y
+            for (uint32_t c = 0; c < count; ++c) {
+                Value s = new_temp(2);
+                line("sincos " + temp_name(s) + mask_text(bit) + ", " + source_text(t, {static_cast<uint8_t>(c), static_cast<uint8_t>(c), static_cast<uint8_t>(c), static_cast<uint8_t>(c)}) +
+                     ", " + register_name(k1) + ", " + register_name(k2));
+                emit("mov", temp_name(d), static_cast<uint8_t>(1 << c), {component_view(s, bit == 1 ? 0 : 1)});
+            }
+            define(result, d);
+            return;
+        }
+        default: break;
+        }
+        throw CompileError("intrinsic (GLSL.std.450 #" + std::to_string(which) + ") has no SM2 translation in this compiler");
+    }
+
+    bool is_literal(uint32_t id, float expected) const {
+        auto c = constants_.find(id);
+        if (c == constants_.end()) return false;
+        const SpirvInstruction* s = &c->second;
+        if (s->opcode == op::ConstantComposite && s->words.size() > 2) {
+            for (size_t k = 2; k < s->words.size(); ++k)
+                if (!is_literal(s->words[k], expected)) return false;
+            return true;
+        }
+        if (s->opcode != op::Constant) return false;
+        float f;
+        std::memcpy(&f, &s->words.at(2), 4);
+        return f == expected;
+    }
+
+    void finish(AssemblyOutput& out) {
+        std::vector<std::string> head;
+        head.push_back(profile());
+        for (const auto& [reg, text] : declarations_) head.push_back(text);
+        static const char* kTypes[] = {"dcl_2d", "dcl_2d", "dcl_volume", "dcl_cube"};
+        for (const auto& [s, dim] : samplers_used_)
+            head.push_back(std::string(kTypes[std::min<uint32_t>(dim, 3)]) + " s" + std::to_string(s));
+        for (size_t r = 0; r < defs_.size(); ++r) {
+            const int reg = static_cast<int>(first_def_register_ + r);
+            if (reg > (pixel_ ? 31 : 255)) {
+                location_ = entry_location_;
+                throw CompileError("uniforms and literals need more constant registers than " + profile() + " has");
+            }
+            head.push_back("def c" + std::to_string(reg) + ", " + format_float(defs_[r][0]) + ", " + format_float(defs_[r][1]) +
+                           ", " + format_float(defs_[r][2]) + ", " + format_float(defs_[r][3]));
+        }
+        for (const auto& h : head) {
+            out.text += h + "\n";
+            out.origin.push_back(entry_location_);
+        }
+        for (size_t k = 0; k < code_.size(); ++k) {
+            out.text += code_[k] + "\n";
+            out.origin.push_back(code_origin_[k]);
+        }
+    }
+
+    const std::vector<uint32_t>& spirv_;
+    std::string_view source_;
+    const CompileOptions& options_;
+    const bool pixel_;
+
+    isa::SourceLocation location_{1, 1}, entry_location_{1, 1};
+    uint32_t entry_function_ = 0;
+    std::vector<uint32_t> interface_;
+    std::unordered_map<uint32_t, std::map<uint32_t, uint32_t>> decorations_;
+    std::unordered_map<uint32_t, std::map<uint32_t, std::set<uint32_t>>> member_decorations_;
+    std::unordered_map<uint32_t, std::string> semantics_;
+    std::unordered_map<uint32_t, Type> types_;
+    std::unordered_map<uint32_t, SpirvInstruction> constants_;
+    std::map<uint32_t, std::pair<uint32_t, uint32_t>> variables_;  // id -> (pointer type, storage); ordered by id = declaration order
+    std::vector<SpirvInstruction> body_;
+
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> member_register_;
+    std::map<uint32_t, int> sampler_of_;
+    std::map<int, uint32_t> samplers_used_;
+    uint32_t first_def_register_ = 0;
+    std::vector<std::array<float, 4>> defs_;
+    std::vector<uint32_t> def_used_;
+    std::vector<bool> def_scalar_;
+
+    std::unordered_map<uint32_t, Value> values_;
+    std::unordered_map<uint32_t, size_t> last_use_;
+    std::set<uint32_t> fused_;
+    std::unordered_map<uint32_t, std::pair<Value, Value>> fused_operands_;
+    std::array<bool, kTempCount> temp_busy_{};
+    std::map<int, int> temp_holders_;
+    std::vector<int> scratch_;
+    int max_temp_ = 0;
+
+    std::map<std::string, std::string> declarations_;
+    std::vector<std::string> code_;
+    std::vector<isa::SourceLocation> code_origin_;
+};
+
+}  // namespace
+
+AssemblyOutput spirv_to_assembly(const std::vector<uint32_t>& spirv, std::string_view source,
+                                 const CompileOptions& options) {
+    return Backend(spirv, source, options).run();
+}
+
+}  // namespace sm2::hlsl

@@ -1,0 +1,25 @@
+// Optimized SPIR-V (frontend.h) -> SM2 assembly text. Straight-line code only: one function, one
+// block; anything else gets a located error naming what SM2 (or this back end) lacks.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sm2/assembler/diagnostics.h"
+#include "sm2/hlsl/compiler.h"
+#include "sm2/isa/program.h"
+
+namespace sm2::hlsl {
+
+struct AssemblyOutput {
+    std::string text;                            // "ps_2_0\ndcl ...\n..." (empty on error)
+    std::vector<isa::SourceLocation> origin;     // per line of `text` (0-based): the HLSL line/column
+    std::vector<assembler::Diagnostic> diagnostics;
+};
+
+[[nodiscard]] AssemblyOutput spirv_to_assembly(const std::vector<uint32_t>& spirv, std::string_view source,
+                                               const CompileOptions& options);
+
+}  // namespace sm2::hlsl

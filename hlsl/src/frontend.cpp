@@ -1,0 +1,211 @@
+#include "frontend.h"
+
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+#include <glslang/SPIRV/GlslangToSpv.h>
+#include <spirv-tools/optimizer.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <string>
+
+namespace sm2::hlsl {
+
+namespace {
+
+constexpr size_t kMaxIncludeBytes = 16u << 20;
+
+// #include "x" searches the including file's folder, then the -I folders; <x> only the -I folders.
+class FileIncluder : public glslang::TShader::Includer {
+public:
+    FileIncluder(std::string main_file, std::vector<std::string> dirs)
+        : main_file_(std::move(main_file)), dirs_(std::move(dirs)) {}
+
+    IncludeResult* includeLocal(const char* header, const char* includer, size_t depth) override {
+        const std::filesystem::path from = (includer && *includer) ? includer : main_file_.c_str();
+        return open(from.parent_path() / header, header, depth).value_or(nullptr);
+    }
+    IncludeResult* includeSystem(const char* header, const char* /*includer*/, size_t depth) override {
+        for (const auto& dir : dirs_)
+            if (auto found = open(std::filesystem::path(dir) / header, header, depth)) return *found;
+        return nullptr;
+    }
+    void releaseInclude(IncludeResult* result) override {
+        if (result == nullptr) return;
+        delete static_cast<std::string*>(result->userData);
+        delete result;
+    }
+
+private:
+    // nullopt: not there (try the next folder); a result with an empty name: an error to report.
+    std::optional<IncludeResult*> open(const std::filesystem::path& path, const char* header, size_t depth) {
+        if (depth > 32) return failure("#include nested more than 32 deep");
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
+        if (std::filesystem::file_size(path, ec) > kMaxIncludeBytes)
+            return failure(std::string("included file '") + header + "' is larger than 16 MiB");
+        std::ifstream in(path, std::ios::binary);
+        std::stringstream text;
+        text << in.rdbuf();
+        auto* data = new std::string(text.str());
+        return new IncludeResult(path.string(), data->data(), data->size(), data);
+    }
+    IncludeResult* failure(const std::string& message) {
+        auto* data = new std::string(message);
+        return new IncludeResult("", data->data(), data->size(), data);
+    }
+
+    std::string main_file_;
+    std::vector<std::string> dirs_;
+};
+
+// glslang reports "ERROR: file:line: 'token' : message" (and "file:line:column:" with columns);
+// each becomes a located diagnostic. Summary lines ("N compilation errors") are dropped.
+void add_glslang_log(const std::string& log, const std::string& file, std::vector<assembler::Diagnostic>& out) {
+    std::istringstream lines(log);
+    std::string line;
+    while (std::getline(lines, line)) {
+        assembler::Severity severity;
+        std::string rest;
+        if (line.rfind("ERROR: ", 0) == 0) {
+            severity = assembler::Severity::Error;
+            rest = line.substr(7);
+        } else if (line.rfind("WARNING: ", 0) == 0) {
+            severity = assembler::Severity::Warning;
+            rest = line.substr(9);
+        } else {
+            continue;
+        }
+        if (rest.find("compilation errors") != std::string::npos || rest.find("No code generated") != std::string::npos)
+            continue;
+        assembler::Diagnostic d;
+        d.severity = severity;
+        d.file = file;
+        // "name:line: message" or "name:line:column: message"; the name may itself hold ':'.
+        size_t pos = rest.find(": ");
+        std::string where = pos == std::string::npos ? std::string() : rest.substr(0, pos);
+        auto take_number = [&](uint32_t& value) {
+            const size_t colon = where.rfind(':');
+            if (colon == std::string::npos) return false;
+            const std::string digits = where.substr(colon + 1);
+            if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos)
+                return false;
+            value = static_cast<uint32_t>(std::stoul(digits));
+            where.resize(colon);
+            return true;
+        };
+        uint32_t a = 0, b = 0;
+        if (take_number(a)) {
+            if (take_number(b)) {
+                d.line = b;
+                d.column = a;
+            } else {
+                d.line = a;
+            }
+            if (!where.empty() && where != "0") d.file = where;
+            d.message = rest.substr(pos + 2);
+        } else {
+            d.message = rest;
+        }
+        if (d.line > 0 && d.column == 0) d.column = 1;
+        out.push_back(std::move(d));
+    }
+}
+
+// SPIRV-Tools unrolls only loops whose OpLoopMerge asks for it; SM2 has no loops in ps_2_0 (and
+// only i#-counted ones in vs_2_0), so every loop is asked to be unrolled, as with HLSL's [unroll].
+void mark_loops_for_unrolling(std::vector<uint32_t>& words) {
+    constexpr uint32_t kOpLoopMerge = 246, kUnroll = 0x1, kDontUnroll = 0x2;
+    for (size_t i = 5; i < words.size();) {
+        const uint32_t count = words[i] >> 16;
+        if (count == 0) return;
+        if ((words[i] & 0xFFFF) == kOpLoopMerge && count >= 4 && i + 3 < words.size() && !(words[i + 3] & kDontUnroll))
+            words[i + 3] |= kUnroll;
+        i += count;
+    }
+}
+
+void initialize_glslang() {
+    static std::once_flag once;
+    std::call_once(once, [] { glslang::InitializeProcess(); });
+}
+
+}  // namespace
+
+SpirvModule hlsl_to_spirv(std::string_view source, const CompileOptions& options) {
+    initialize_glslang();
+    SpirvModule result;
+    const EShLanguage stage = options.stage == isa::ShaderType::Vertex ? EShLangVertex : EShLangFragment;
+    glslang::TShader shader(stage);
+    const std::string text(source);
+    const char* strings[] = {text.c_str()};
+    const int lengths[] = {static_cast<int>(text.size())};
+    const char* names[] = {options.file_name.c_str()};
+    shader.setStringsWithLengthsAndNames(strings, lengths, names, 1);
+    std::string preamble;
+    for (const auto& [name, value] : options.defines) preamble += "#define " + name + " " + value + "\n";
+    shader.setPreamble(preamble.c_str());
+    shader.setEntryPoint(options.entry_point.c_str());
+    shader.setEnvInput(glslang::EShSourceHlsl, stage, glslang::EShClientVulkan, 100);
+    shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
+    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
+    shader.setEnvTargetHlslFunctionality1();  // keeps the semantic strings (UserSemantic)
+    shader.setAutoMapLocations(true);
+    // DX9 compatibility: sampler2D/tex2D and the DX9 semantics (COLOR, POSITION).
+    const auto messages = static_cast<EShMessages>(EShMsgReadHlsl | EShMsgSpvRules | EShMsgVulkanRules |
+                                                   EShMsgHlslDX9Compatible | EShMsgDebugInfo |
+                                                   EShMsgHlslLegalization | EShMsgHlslOffsets);
+    FileIncluder includer(options.file_name, options.include_dirs);
+    if (lengths[0] < 0 || !shader.parse(GetDefaultResources(), 100, false, messages, includer)) {
+        add_glslang_log(shader.getInfoLog(), options.file_name, result.diagnostics);
+        if (result.diagnostics.empty())
+            result.diagnostics.push_back({assembler::Severity::Error, options.file_name, 0, 0, "HLSL parse failed"});
+        return result;
+    }
+    glslang::TProgram program;
+    program.addShader(&shader);
+    if (!program.link(messages) || !program.mapIO()) {
+        add_glslang_log(program.getInfoLog(), options.file_name, result.diagnostics);
+        if (!has_errors(result.diagnostics))
+            result.diagnostics.push_back({assembler::Severity::Error, options.file_name, 0, 0,
+                                          "link failed (is the entry point '" + options.entry_point + "' defined?)"});
+        return result;
+    }
+    add_glslang_log(shader.getInfoLog(), options.file_name, result.diagnostics);  // warnings
+
+    std::vector<uint32_t> spirv;
+    glslang::SpvOptions spv_options;
+    spv_options.generateDebugInfo = true;  // OpLine, so that back-end errors name the HLSL line
+    spv_options.disableOptimizer = true;   // we run our own pass list below
+    spv::SpvBuildLogger logger;
+    glslang::GlslangToSpv(*program.getIntermediate(stage), spirv, &logger, &spv_options);
+
+    mark_loops_for_unrolling(spirv);
+    spvtools::Optimizer optimizer(SPV_ENV_UNIVERSAL_1_0);
+    std::string optimizer_errors;
+    optimizer.SetMessageConsumer([&](spv_message_level_t level, const char*, const spv_position_t&, const char* m) {
+        if (level <= SPV_MSG_ERROR) optimizer_errors += std::string(m) + "\n";
+    });
+    optimizer.RegisterLegalizationPasses();
+    optimizer.RegisterPerformancePasses();
+    // SM2 has no dynamic loops in ps_2_0 and only constant-count ones in vs_2_0: unroll them all.
+    optimizer.RegisterPass(spvtools::CreateLoopUnrollPass(true));
+    optimizer.RegisterPerformancePasses();
+    optimizer.RegisterPass(spvtools::CreateIfConversionPass());
+    optimizer.RegisterPass(spvtools::CreateBlockMergePass());
+    optimizer.RegisterPass(spvtools::CreateSimplificationPass());
+    optimizer.RegisterPass(spvtools::CreateAggressiveDCEPass());
+    spvtools::OptimizerOptions run_options;
+    run_options.set_run_validator(false);
+    if (!optimizer.Run(spirv.data(), spirv.size(), &result.words, run_options)) {
+        result.words.clear();
+        result.diagnostics.push_back({assembler::Severity::Error, options.file_name, 0, 0,
+                                      "SPIR-V optimizer failed: " + optimizer_errors});
+    }
+    return result;
+}
+
+}  // namespace sm2::hlsl

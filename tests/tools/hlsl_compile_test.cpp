@@ -1,0 +1,254 @@
+// sm2 compile: HLSL compiled to vs_2_0/ps_2_0, then executed with `sm2 run` on chosen inputs; the
+// expected outputs are worked out by hand in the comments.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_support.h"
+
+using namespace cli_support;
+
+namespace {
+
+// Compiles `hlsl` with `profile` into a bytecode file; fails the test (and returns "") on errors.
+std::string compile(const std::string& name, const std::string& hlsl, const std::string& profile,
+                    const std::string& extra = "") {
+    const std::string source = tmp(name + ".hlsl"), output = tmp(name + ".bin");
+    write_file(source, hlsl);
+    const cli_support::Run r = sm2("compile " + source + " -T " + profile + " -o " + output + " " + extra);
+    EXPECT_EQ(r.status, 0) << r.err;
+    return r.status == 0 ? output : std::string();
+}
+
+// The values `sm2 run` prints for one output register ("oC0 = 1 0.5 0.25 1").
+std::vector<float> output_of(const std::string& run_text, const std::string& reg) {
+    std::istringstream lines(run_text);
+    std::string line;
+    while (std::getline(lines, line)) {
+        if (line.rfind(reg + " = ", 0) != 0) continue;
+        std::istringstream values(line.substr(reg.size() + 3));
+        std::vector<float> out;
+        float f;
+        while (values >> f) out.push_back(f);
+        return out;
+    }
+    return {};
+}
+
+void expect_near(const std::vector<float>& actual, const std::vector<float>& expected, float tolerance = 1e-5f) {
+    ASSERT_EQ(actual.size(), expected.size());
+    for (size_t k = 0; k < expected.size(); ++k) EXPECT_NEAR(actual[k], expected[k], tolerance) << "component " << k;
+}
+
+std::vector<float> run_output(const std::string& shader, const std::string& args, const std::string& reg) {
+    const cli_support::Run r = sm2("run " + shader + " " + args);
+    EXPECT_EQ(r.status, 0) << r.err;
+    return output_of(r.out, reg);
+}
+
+constexpr const char* kMatrixColumns =  // c0..c3 = (1,0,0,0) (0,2,0,0) (0,0,3,0) (1,1,1,1)
+    " --const c0=1,0,0,0 --const c1=0,2,0,0 --const c2=0,0,3,0 --const c3=1,1,1,1";
+
+}  // namespace
+
+TEST(HlslCompile, ConstantColourPixelShader) {
+    const auto ps = compile("red", "float4 main() : COLOR { return float4(1, 0.5, 0.25, 1); }\n", "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "", "oC0"), {1, 0.5f, 0.25f, 1});
+}
+
+TEST(HlslCompile, VertexShaderTransformsAndPassesTexcoord) {
+    // float4x4 is column_major: c0..c3 hold M's columns, so mul(pos, M).j = dot(pos, c_j):
+    // pos (1,2,3,1) -> (1, 4, 9, 1+2+3+1 = 7). uv * 2: (0.25, 0.75) -> (0.5, 1.5).
+    const auto vs = compile("xform",
+                            "float4x4 mvp;\n"
+                            "struct VSOut { float4 pos : POSITION; float2 uv : TEXCOORD0; };\n"
+                            "VSOut main(float4 pos : POSITION, float2 uv : TEXCOORD0) {\n"
+                            "  VSOut o; o.pos = mul(pos, mvp); o.uv = uv * 2; return o;\n}\n",
+                            "vs_2_0");
+    ASSERT_FALSE(vs.empty());
+    const std::string inputs = std::string(" --input v0=1,2,3,1 --input v1=0.25,0.75") + kMatrixColumns;
+    expect_near(run_output(vs, inputs, "oPos"), {1, 4, 9, 7});
+    expect_near(run_output(vs, inputs, "oT0.xy"), {0.5f, 1.5f});
+}
+
+TEST(HlslCompile, RowMajorMatrixHoldsRowsInRegisters) {
+    // row_major: c0..c3 are M's rows. mul(pos, M) = sum_i pos_i * row_i
+    // = 1*(1,0,0,0) + 2*(0,2,0,0) + 3*(0,0,3,0) + 1*(1,1,1,1) = (2, 5, 10, 1);
+    // mul(M, pos).i = dot(row_i, pos) = (1, 4, 9, 7).
+    const auto vs = compile("rowmajor",
+                            "row_major float4x4 m;\n"
+                            "void main(float4 pos : POSITION, out float4 o : POSITION, out float4 c : COLOR0) {\n"
+                            "  o = mul(pos, m); c = mul(m, pos);\n}\n",
+                            "vs_2_0");
+    ASSERT_FALSE(vs.empty());
+    const std::string inputs = std::string(" --input v0=1,2,3,1") + kMatrixColumns;
+    expect_near(run_output(vs, inputs, "oPos"), {2, 5, 10, 1});
+    expect_near(run_output(vs, inputs, "oD0"), {1, 4, 9, 7});
+}
+
+TEST(HlslCompile, SwizzlesAndArithmetic) {
+    // k = (1,2,3,4): k.wzyx * 2 + k.yzwx = (8,6,4,2) + (2,3,4,1) = (10, 9, 8, 3);
+    // ps_2_0 has no .yzwx swizzle, so this also checks the per-component moves.
+    const auto ps = compile("swizzle", "float4 k;\nfloat4 main() : COLOR { return k.wzyx * 2 + k.yzwx; }\n", "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "--const c0=1,2,3,4", "oC0"), {10, 9, 8, 3});
+}
+
+TEST(HlslCompile, Intrinsics) {
+    // u = (4, 16, 0.25, 3): sqrt(4) = 2, rsqrt(16) = 0.25, lerp(2, 6, 0.25) = 3, max(3, 1) - min(3, 1) = 2.
+    const auto ps = compile("intrinsics",
+                            "float4 u;\n"
+                            "float4 main() : COLOR {\n"
+                            "  return float4(sqrt(u.x), rsqrt(u.y), lerp(2.0, 6.0, u.z), max(u.w, 1) - min(u.w, 1));\n}\n",
+                            "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "--const c0=4,16,0.25,3", "oC0"), {2, 0.25f, 3, 2}, 1e-4f);
+    // normalize(a), dot, saturate and abs:
+    const auto ps2 = compile("intrinsics2",
+                             "float3 a; float3 b;\n"
+                             "float4 main() : COLOR {\n"
+                             "  float3 n = normalize(a);\n"
+                             "  return float4(n.x, n.z, dot(b, b.zyx), saturate(b.z) + abs(-b.x));\n}\n",
+                             "ps_2_0");
+    ASSERT_FALSE(ps2.empty());
+    // a = (3,0,4) in c0, b = (1,2,3) in c1: dot((1,2,3),(3,2,1)) = 10; saturate(3) + abs(-1) = 2.
+    expect_near(run_output(ps2, "--const c0=3,0,4,0 --const c1=1,2,3,0", "oC0"), {0.6f, 0.8f, 10, 2}, 1e-4f);
+}
+
+TEST(HlslCompile, SelectBecomesCmp) {
+    // x > 0.5 ? 1 : 0.25 on t0.x, and a static branch folded by -D.
+    const std::string hlsl =
+        "float4 main(float2 uv : TEXCOORD0) : COLOR {\n"
+        "  float x = uv.x > 0.5 ? 1.0 : 0.25;\n"
+        "#if MODE == 1\n  x = x * 4;\n#endif\n"
+        "  return float4(x, uv.y, 0, 1);\n}\n";
+    const auto ps = compile("select", hlsl, "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "--input t0=0.75,0.5", "oC0"), {1, 0.5f, 0, 1});
+    expect_near(run_output(ps, "--input t0=0.25,0.5", "oC0"), {0.25f, 0.5f, 0, 1});
+    const auto ps4 = compile("select4", hlsl, "ps_2_0", "-D MODE=1");
+    ASSERT_FALSE(ps4.empty());
+    expect_near(run_output(ps4, "--input t0=0.25,0.5", "oC0"), {1, 0.5f, 0, 1});
+}
+
+TEST(HlslCompile, SelectInVertexShader) {
+    // vs_2_0 has no cmp: sge and lrp. c0.x = 2: (2 >= 1) -> 5, else 7.
+    const auto vs = compile("vselect",
+                            "float4 k;\n"
+                            "float4 main(float4 p : POSITION) : POSITION { return float4(k.x >= 1 ? 5 : 7, p.yzw); }\n",
+                            "vs_2_0");
+    ASSERT_FALSE(vs.empty());
+    expect_near(run_output(vs, "--input v0=0,1,2,3 --const c0=2,0,0,0", "oPos"), {5, 1, 2, 3});
+    expect_near(run_output(vs, "--input v0=0,1,2,3 --const c0=0.5,0,0,0", "oPos"), {7, 1, 2, 3});
+}
+
+TEST(HlslCompile, TextureSampling) {
+    // A 2x2 TGA, top row red then green, bottom row blue then white; POINT sampling at
+    // (0.75, 0.25) reads the green texel: (0,1,0,1) * 0.5 + (0,0,0.25,0) = (0, 0.5, 0.25, 0.5).
+    const std::string tga = tmp("texture.tga");
+    std::string bytes(18, '\0');
+    bytes[2] = 2;                     // uncompressed true colour
+    bytes[12] = 2;                    // width
+    bytes[14] = 2;                    // height
+    bytes[16] = 32;                   // bits per pixel
+    bytes[17] = 0x28;                 // top-left origin, 8 alpha bits
+    const unsigned char pixels[] = {0, 0, 255, 255, 0, 255, 0, 255,         // red, green (BGRA)
+                                    255, 0, 0, 255, 255, 255, 255, 255};   // blue, white
+    bytes.append(reinterpret_cast<const char*>(pixels), sizeof pixels);
+    write_file(tga, bytes);
+    const auto ps = compile("texture",
+                            "sampler2D tex;\n"
+                            "float4 main(float2 uv : TEXCOORD0) : COLOR { return tex2D(tex, uv) * 0.5 + float4(0, 0, 0.25, 0); }\n",
+                            "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "--texture s0=" + tga + " --input t0=0.75,0.25", "oC0"), {0, 0.5f, 0.25f, 0.5f});
+}
+
+TEST(HlslCompile, ErrorsAreLocatedInTheHlsl) {
+    const std::string bad = tmp("bad.hlsl");
+    write_file(bad, "float4 main() : COLOR {\n  return undefined_thing;\n}\n");
+    cli_support::Run r = sm2("compile " + bad + " -T ps_2_0");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("bad.hlsl(2,"), std::string::npos) << r.err;
+
+    // Sampling in vs_2_0: no texld there; the error names the line of the tex2D.
+    const std::string vs = tmp("vstex.hlsl");
+    write_file(vs, "sampler2D s;\nfloat4 main(float2 uv : TEXCOORD0) : POSITION {\n  return tex2D(s, uv);\n}\n");
+    r = sm2("compile " + vs + " -T vs_2_0");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("vstex.hlsl(3,"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("vs_3_0"), std::string::npos) << r.err;
+
+    // A branch on a run-time value that needs real flow control.
+    const std::string branch = tmp("branch.hlsl");
+    write_file(branch, "float4 main(float2 uv : TEXCOORD0) : COLOR {\n  if (uv.x < 0.5) discard;\n  return 1;\n}\n");
+    r = sm2("compile " + branch + " -T ps_2_0");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("branch.hlsl("), std::string::npos) << r.err;
+
+    EXPECT_EQ(sm2("compile " + bad + " -T ps_3_0").status, 2);
+    EXPECT_EQ(sm2("compile " + bad + " -T ps_2_0 -D 1X=2").status, 2);
+}
+
+TEST(HlslCompile, StructsAndNamedEntryPoint) {
+    // The source document's Program 3.1 (Gouraud pass-through), entry point PShader.
+    const auto ps = compile("gouraud",
+                            "struct T_PIN { float4 col : COLOR0; };\n"
+                            "struct T_POUT { float4 col : COLOR0; };\n"
+                            "T_POUT PShader(T_PIN pin) { T_POUT pout; pout.col = pin.col; return pout; }\n",
+                            "ps_2_0", "-E PShader");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "--input v0=0.1,0.2,0.3,0.4", "oC0"), {0.1f, 0.2f, 0.3f, 0.4f});
+}
+
+TEST(HlslCompile, SinCosWithRangeReduction) {
+    // The waving lake: h = sin(2x + t) * 0.5 + cos(z + t) * 0.25 at x = 0.5, z = 0.25, t = 0.3:
+    // sin(1.3) = 0.963558, cos(0.55) = 0.852525 -> h = 0.481779 + 0.213131 = 0.694910.
+    // With the identity in c0..c3, oPos = (x, h, z, 1).
+    const auto vs = compile("lake",
+                            "float4x4 mvp; float time;\n"
+                            "struct VOut { float4 pos : POSITION; float4 col : COLOR0; };\n"
+                            "VOut main(float4 p : POSITION) {\n"
+                            "  VOut o;\n"
+                            "  float h = sin(p.x * 2 + time) * 0.5 + cos(p.z + time) * 0.25;\n"
+                            "  o.pos = mul(float4(p.x, h, p.z, 1), mvp);\n"
+                            "  o.col = float4(h, h, 1, 1);\n"
+                            "  return o;\n}\n",
+                            "vs_2_0");
+    ASSERT_FALSE(vs.empty());
+    const std::string args = "--input v0=0.5,0,0.25,1 --const c0=1,0,0,0 --const c1=0,1,0,0 --const c2=0,0,1,0 "
+                             "--const c3=0,0,0,1 --const c4=0.3,0,0,0";
+    expect_near(run_output(vs, args, "oPos"), {0.5f, 0.69491f, 0.25f, 1}, 1e-4f);
+}
+
+TEST(HlslCompile, IncludeFolderAndDefines) {
+    // #include <scale.h> from -I; SCALE from -D: 0.5 * 3 = 1.5.
+    const std::string dir = tmp("include_dir");
+    std::filesystem::create_directories(dir);
+    write_file(dir + "/scale.h", "float scaled(float x) { return x * SCALE; }\n");
+    const auto ps = compile("include", "#include <scale.h>\nfloat4 main() : COLOR { return float4(scaled(0.5), 0, 0, 1); }\n",
+                            "ps_2_0", "-I " + dir + " -D SCALE=3");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "", "oC0"), {1.5f, 0, 0, 1});
+}
+
+TEST(HlslCompile, LoopsAreUnrolledAndTheSlotLimitIsLocated) {
+    // x = x * x + 0.5 three times from 0.5: 0.75, 1.0625, 1.62890625.
+    const std::string loop = "float4 main(float2 uv : TEXCOORD0) : COLOR {\n  float x = uv.x;\n"
+                             "  for (int i = 0; i < COUNT; i++) x = x * x + 0.5;\n  return x;\n}\n";
+    const auto ps = compile("loop3", loop, "ps_2_0", "-D COUNT=3");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "--input t0=0.5,0", "oC0"), {1.62890625f, 1.62890625f, 1.62890625f, 1.62890625f});
+    // 70 mads do not fit ps_2_0's 64 arithmetic slots: the error names the limit and the loop's line.
+    const std::string source = tmp("loop70.hlsl");
+    write_file(source, loop);
+    const cli_support::Run r = sm2("compile " + source + " -T ps_2_0 -D COUNT=70");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("loop70.hlsl(3,"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("the limit is 64"), std::string::npos) << r.err;
+}
