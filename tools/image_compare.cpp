@@ -190,11 +190,11 @@ nlohmann::ordered_json to_json(const ImageComparison& c) {
 
 std::string html_row(const ImageComparison& c, const runtime::Image* a, const runtime::Image* b) {
     constexpr uint32_t kThumbnailSide = 160;
-    auto cell = [](const runtime::Image* image) -> std::string {
+    auto cell = [](const runtime::Image* image, bool keep_peaks = false) -> std::string {
         if (image == nullptr) return "<td></td>";
         try {
             return "<td><img alt=\"\" src=\"data:image/png;base64," +
-                   runtime::png_thumbnail_base64(*image, kThumbnailSide) + "\"></td>";
+                   runtime::png_thumbnail_base64(*image, kThumbnailSide, keep_peaks) + "\"></td>";
         } catch (const runtime::ImageIoError& e) {
             return "<td>" + html_escape(e.what()) + "</td>";
         }
@@ -215,7 +215,7 @@ std::string html_row(const ImageComparison& c, const runtime::Image* a, const ru
         const double scale = std::isfinite(d.max_abs_error) ? d.max_abs_error : 1.0;
         try {
             const runtime::Image heat = runtime::difference_heatmap(*a, *b, scale);
-            html += cell(&heat);
+            html += cell(&heat, true);
         } catch (const runtime::ImageIoError& e) {
             html += "<td>" + html_escape(e.what()) + "</td>";
         }

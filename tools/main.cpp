@@ -51,7 +51,8 @@ constexpr Examples kExamples[] = {
                "  sm2 replay samples/scenes/09_lake.sm2cs -o out/lake\n"
                "  sm2 replay scene.sm2cb -o out/scene --overwrite --threads 1 --engine interpreter\n"
                "  sm2 replay - -o out/stdin --quiet < scene.sm2cs\n"
-               "  sm2 replay scene.sm2cs -o out/scene --overwrite --compare golden/scene --fail 0.004\n"},
+               "  sm2 replay scene.sm2cs -o out/scene --overwrite --compare golden/scene --fail 0.004\n"
+               "  sm2 replay scene.sm2cs -o out/scene --overwrite --quiet --stats table\n"},
     {"bench", "Examples:\n"
               "  sm2 bench samples/scenes/27_final_combine.sm2cs\n"
               "  sm2 bench scene.sm2cs --repeat 20 --threads 1 --precision fp24\n"

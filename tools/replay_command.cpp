@@ -122,7 +122,47 @@ struct ReplayCliOptions {
     bool overwrite = false;
     std::string compare;  // golden folder
     ThresholdOptions thresholds;
+    std::string stats;    // "", "table" or "json"
 };
+
+// --stats: a row per draw, then the replay's totals.
+void print_draw_table(const runtime::ReplayResult& result) {
+    std::printf("%7s %7s %6s %11s %11s %11s %11s %9s %10s %10s  %s\n", "call", "line", "frame", "rasterized", "shaded",
+                "killed", "written", "vertices", "primitives", "ms", "draw");
+    for (const auto& d : result.draws) {
+        const auto& s = d.statistics;
+        std::printf("%7zu %7u %6zu %11llu %11llu %11llu %11llu %9llu %10llu %10.3f  %s\n", d.call, d.line, d.frame,
+                    static_cast<unsigned long long>(s.pixels_rasterized), static_cast<unsigned long long>(s.pixels_shaded),
+                    static_cast<unsigned long long>(s.pixels_killed), static_cast<unsigned long long>(s.pixels_written),
+                    static_cast<unsigned long long>(s.vertices_shaded), static_cast<unsigned long long>(s.primitives),
+                    d.seconds * 1000.0, d.name.c_str());
+    }
+    const auto& s = result.statistics;
+    std::printf("%7s %7s %6s %11llu %11llu %11llu %11llu %9llu %10llu %10s  %zu draws\n", "total", "", "",
+                static_cast<unsigned long long>(s.pixels_rasterized), static_cast<unsigned long long>(s.pixels_shaded),
+                static_cast<unsigned long long>(s.pixels_killed), static_cast<unsigned long long>(s.pixels_written),
+                static_cast<unsigned long long>(s.vertices_shaded), static_cast<unsigned long long>(s.primitives), "",
+                result.draws.size());
+}
+
+nlohmann::ordered_json draw_json(const runtime::DrawStatistics& s) {
+    return {{"pixels_rasterized", s.pixels_rasterized}, {"pixels_shaded", s.pixels_shaded},
+            {"pixels_killed", s.pixels_killed},         {"pixels_written", s.pixels_written},
+            {"vertices_shaded", s.vertices_shaded},     {"primitives", s.primitives}};
+}
+
+void print_draw_json(const runtime::ReplayResult& result) {
+    nlohmann::ordered_json j = {{"calls", result.calls}, {"frames", result.frames.size()}, {"seconds", result.seconds},
+                                {"refused_calls", result.refused}, {"draws", nlohmann::ordered_json::array()}};
+    for (const auto& d : result.draws) {
+        nlohmann::ordered_json row = {{"call", d.call}, {"line", d.line}, {"record", d.record}, {"frame", d.frame},
+                                      {"name", d.name}, {"seconds", d.seconds}};
+        row.update(draw_json(d.statistics));
+        j["draws"].push_back(std::move(row));
+    }
+    j["total"] = draw_json(result.statistics);
+    std::cout << j.dump(2) << '\n';
+}
 
 // "call 120/4000, frame 3" on one terminal line, at most ten times a second; calls as the
 // summary counts them (comments and blank lines are statements, not calls).
@@ -207,6 +247,10 @@ bool is_frame_of(const std::string& path, const std::string& output) {
 
 int run_replay(const ReplayCliOptions& o) {
     if (!o.numeric.check("replay")) return kBadUsage;
+    if (o.stats == "json" && !o.compare.empty()) {
+        std::cerr << "sm2 replay: --stats json keeps stdout for the JSON alone: run --compare separately\n";
+        return kBadUsage;
+    }
     std::optional<FrameComparer> comparer;
     if (!o.compare.empty()) {
         std::error_code golden_error;
@@ -258,11 +302,14 @@ int run_replay(const ReplayCliOptions& o) {
         progress.update(done, total, calls_before[std::min(done, calls_before.size() - 1)], calls_before.back(),
                         device.frames_presented());
     };
+    options.per_draw_statistics = !o.stats.empty();
     runtime::Replayer replayer(device, options);
     const runtime::ReplayResult result = replayer.replay(loaded->stream);
     progress.finish();
 
-    if (!o.quiet) {
+    if (o.stats == "json") {  // stdout holds the JSON alone
+        print_draw_json(result);
+    } else if (!o.quiet) {
         for (size_t i = 0; i < result.frames.size(); ++i) {
             const auto& f = result.frames[i];
             char name[32];
@@ -272,10 +319,12 @@ int run_replay(const ReplayCliOptions& o) {
         }
     }
     const auto& s = result.statistics;
-    std::cout << result.frames.size() << " frames, " << result.calls << " calls in " << fixed(result.seconds, 3)
-              << " s: " << s.draws << " draws, " << s.vertices_shaded << " vertices, " << s.primitives
-              << " primitives, " << s.pixels_shaded << " pixels shaded, " << s.pipelines_built
-              << " pipelines built\n";
+    if (o.stats == "table") print_draw_table(result);
+    if (o.stats != "json")
+        std::cout << result.frames.size() << " frames, " << result.calls << " calls in " << fixed(result.seconds, 3)
+                  << " s: " << s.draws << " draws, " << s.vertices_shaded << " vertices, " << s.primitives
+                  << " primitives, " << s.pixels_shaded << " pixels shaded, " << s.pipelines_built
+                  << " pipelines built\n";
     print_diagnostics(result.diagnostics);
     if (comparer) {
         comparer->missing_frames(device.frames_presented());
@@ -433,6 +482,11 @@ void add_replay_commands(CLI::App& app, int& status) {
                        "(as sm2 diff; --fail, --warn, --failpercent, --hardfail); exit as sm2 diff: 0 pass, 1 "
                        "warning, 2 failure (or refused calls), 3 sizes differ, 4 a frame missing on either side");
     r->thresholds.add_to(*replay);
+    replay->add_option("--stats", r->stats,
+                       "Per draw: call number, line, frame, pixels rasterized, shaded, killed (texkill), written, "
+                       "vertices, primitives and time; 'table' after the frames, or 'json' (stdout then holds the "
+                       "JSON alone)")
+        ->check(CLI::IsMember({"table", "json"}));
     replay->callback([r, &status] { status = run_replay(*r); });
 
     auto b = std::make_shared<BenchCliOptions>();

@@ -57,9 +57,10 @@ struct Functions {
     bool (*heatmap)(uint32_t width, uint32_t height, const float* a, const float* b, float scale, float* heat,
                     std::string* error);
     // The image resized to fit max_side x max_side, as an 8-bit PNG in memory, base64-encoded
-    // into *base64 (for an HTML data: URI).
-    bool (*png_thumbnail)(uint32_t width, uint32_t height, const float* rgba, uint32_t max_side, std::string* base64,
-                          std::string* error);
+    // into *base64 (for an HTML data: URI). `keep_peaks`: each thumbnail pixel is the largest of
+    // the pixels it stands for (a heat map's lone differing pixels stay visible), else filtered.
+    bool (*png_thumbnail)(uint32_t width, uint32_t height, const float* rgba, uint32_t max_side, bool keep_peaks,
+                          std::string* base64, std::string* error);
 };
 
 // The module's functions, loaded on the first call (thread-safe). nullptr when the module cannot

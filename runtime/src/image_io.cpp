@@ -259,12 +259,12 @@ Image difference_heatmap(const Image& a, const Image& b, double scale) {
     return map;
 }
 
-std::string png_thumbnail_base64(const Image& image, uint32_t max_side) {
+std::string png_thumbnail_base64(const Image& image, uint32_t max_side, bool keep_peaks) {
     check_image(image, "thumbnail");
     if (image.width == 0 || image.height == 0 || max_side == 0) throw ImageIoError("thumbnail: empty image");
     const image_codec::Functions& f = codec("thumbnail");
     std::string base64, error;
-    if (!f.png_thumbnail(image.width, image.height, image.rgba.data(), max_side, &base64, &error))
+    if (!f.png_thumbnail(image.width, image.height, image.rgba.data(), max_side, keep_peaks, &base64, &error))
         throw ImageIoError(error);
     return base64;
 }

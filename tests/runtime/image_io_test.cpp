@@ -240,6 +240,44 @@ TEST_F(ImageIo, PngThumbnailIsAShrunkPng) {
     EXPECT_EQ(base64.substr(20, 12), "UgAAAGQAAAAy") << base64.substr(0, 40);
 }
 
+// RFC 4648 base64 back to bytes, to read a thumbnail (the library has the encoder only).
+std::string base64_decode(const std::string& text) {
+    const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string bytes;
+    uint32_t bits = 0;
+    int count = 0;
+    for (char c : text) {
+        const size_t v = alphabet.find(c);
+        if (v == std::string::npos) break;  // '=' padding
+        bits = (bits << 6) | static_cast<uint32_t>(v);
+        count += 6;
+        if (count >= 8) {
+            count -= 8;
+            bytes += static_cast<char>((bits >> count) & 0xFF);
+        }
+    }
+    return bytes;
+}
+
+TEST_F(ImageIo, HeatmapThumbnailKeepsALonePixel) {
+    // 300x150 black, one red pixel at (151, 76): shrunk 3 times to 100x50, a filter averages it
+    // away; keeping peaks makes thumbnail pixel (50, 25) (source pixels 150-152, 75-77) red.
+    Image heat = make_image(300, 150, std::vector<float>(300 * 150 * 4, 0.0f));
+    for (size_t i = 3; i < heat.rgba.size(); i += 4) heat.rgba[i] = 1.0f;
+    heat.rgba[(76 * 300 + 151) * 4] = 1.0f;
+    auto thumbnail = [&](bool keep_peaks) {
+        std::ofstream(path("thumb.png"), std::ios::binary) << base64_decode(png_thumbnail_base64(heat, 100, keep_peaks));
+        return read_image(path("thumb.png"));
+    };
+    const Image peaks = thumbnail(true);
+    ASSERT_EQ(peaks.width, 100u);
+    ASSERT_EQ(peaks.height, 50u);
+    expect_pixel(peaks, 50, 25, 1.0f, 0, 0, 1);
+    expect_pixel(peaks, 10, 10, 0.0f, 0, 0, 1);
+    const Image filtered = thumbnail(false);
+    EXPECT_LT(filtered.rgba[(25 * 100 + 50) * 4], 0.5f);
+}
+
 TEST_F(ImageIo, WriteImageThenReadImageRoundTripsAHeatmap) {
     const Image map = make_image(2, 1, {1.0f, 0, 0, 1, 0.5f, 0, 0, 1});
     write_image(map, path("h.png"));

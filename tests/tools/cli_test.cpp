@@ -531,6 +531,88 @@ TEST(CliReplay, CompareSampleSceneWithItsOwnFrames) {
     EXPECT_NE(r.out.find("frame_0000.png: PASS, max error 0, PSNR inf dB"), std::string::npos) << r.out;
 }
 
+// Three full-screen draws (a 4x4 target, two triangles covering each pixel once): a solid colour
+// (16 pixels rasterized, shaded, written), a shader whose texkill discards every pixel (16
+// killed, none written), and alpha test NEVER (16 shaded, none written). Calls 15, 17, 21 on
+// lines 31, 33, 37.
+const char* const kStatsScene =
+    "sm2cs 1\n"
+    "CreateDevice 4 4 A8R8G8B8\n"
+    "CreateVertexBuffer vb 48\n"
+    "Lock vb 0 f32[ -1 1 0.5   1 1 0.5   -1 -1 0.5   1 -1 0.5 ]\n"
+    "CreateVertexDeclaration decl { 0 0 FLOAT3 DEFAULT POSITION 0 }\n"
+    "CreateVertexShader vs asm<<END\n"
+    "vs_2_0\n"
+    "dcl_position v0\n"
+    "mov oPos, v0\n"
+    "END\n"
+    "CreatePixelShader solid asm<<END\n"
+    "ps_2_0\n"
+    "def c0, 1, 0, 0, 1\n"
+    "mov oC0, c0\n"
+    "END\n"
+    "CreatePixelShader kill asm<<END\n"
+    "ps_2_0\n"
+    "def c0, 1, 0, 0, 1\n"
+    "def c1, -1, -1, -1, -1\n"
+    "mov r0, c1\n"
+    "texkill r0\n"
+    "mov oC0, c0\n"
+    "END\n"
+    "SetVertexDeclaration decl\n"
+    "SetVertexShader vs\n"
+    "SetStreamSource 0 vb 0 12\n"
+    "SetRenderState CULLMODE NONE\n"
+    "Clear TARGET 0xFF000000 1 0\n"
+    "BeginScene\n"
+    "SetPixelShader solid\n"
+    "DrawPrimitive TRIANGLESTRIP 0 2\n"
+    "SetPixelShader kill\n"
+    "DrawPrimitive TRIANGLESTRIP 0 2\n"
+    "SetPixelShader solid\n"
+    "SetRenderState ALPHATESTENABLE TRUE\n"
+    "SetRenderState ALPHAFUNC NEVER\n"
+    "DrawPrimitive TRIANGLESTRIP 0 2\n"
+    "EndScene\n"
+    "Present\n";
+
+TEST(CliReplay, StatsCountEachDrawsPixels) {
+    const std::string dir = make_dir("replay_stats");
+    write_file(dir + "/s.sm2cs", kStatsScene);
+    auto r = sm2("replay " + dir + "/s.sm2cs -o " + dir + "/out --quiet --stats json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["calls"], 23);
+    ASSERT_EQ(j["draws"].size(), 3u);
+    const struct {
+        int call, line, killed, written;
+    } expected[] = {{15, 31, 0, 16}, {17, 33, 16, 0}, {21, 37, 0, 0}};
+    for (size_t i = 0; i < 3; ++i) {
+        const auto& d = j["draws"][i];
+        EXPECT_EQ(d["call"], expected[i].call) << i;
+        EXPECT_EQ(d["line"], expected[i].line) << i;
+        EXPECT_EQ(d["name"], "DrawPrimitive") << i;
+        EXPECT_EQ(d["frame"], 0) << i;
+        EXPECT_EQ(d["pixels_rasterized"], 16) << i;
+        EXPECT_EQ(d["pixels_shaded"], 16) << i;
+        EXPECT_EQ(d["pixels_killed"], expected[i].killed) << i;
+        EXPECT_EQ(d["pixels_written"], expected[i].written) << i;
+        EXPECT_EQ(d["vertices_shaded"], 4) << i;
+        EXPECT_EQ(d["primitives"], 2) << i;
+        EXPECT_GE(d["seconds"].get<double>(), 0.0) << i;
+    }
+    EXPECT_EQ(j["total"]["pixels_written"], 16);
+    EXPECT_EQ(j["total"]["pixels_killed"], 16);
+    auto table = sm2("replay " + dir + "/s.sm2cs -o " + dir + "/out --overwrite --quiet --stats table");
+    ASSERT_EQ(table.status, 0) << table.err;
+    EXPECT_NE(table.out.find("     17      33      0          16          16          16           0         4          2"),
+              std::string::npos) << table.out;
+    EXPECT_NE(table.out.find("  total                         48          48          16          16        12          6"),
+              std::string::npos) << table.out;
+    EXPECT_NE(table.out.find("1 frames, 23 calls"), std::string::npos) << table.out;
+    EXPECT_EQ(sm2("replay " + dir + "/s.sm2cs -o " + dir + "/out --overwrite --stats csv").status, 2);
+}
+
 TEST(CliBench, JsonReport) {
     const std::string dir = make_dir("bench_json");
     write_file(dir + "/b.sm2cs",
@@ -741,12 +823,24 @@ TEST(CliBadFiles, DirectoriesDevicesAndFifosAreRefused) {
         {"run " + texture_shader + " --texture s0=/dev/zero", "/dev/zero: is a character device"},
         {"run " + texture_shader + " --texture s0=" + fifo, fifo + ": is a FIFO"},
         {"run " + texture_shader + " --texture s0=" + dir, dir + ": is a directory"},
-        {"diff " + dir + " " + fifo, dir + ": is a directory"},
-        {"diff /dev/zero " + dir, "/dev/zero: is a character device"},
     };
     for (const Case& c : cases) {
         auto r = sm2(c.args);
         EXPECT_EQ(r.status, 1) << c.args << ": " << r.err;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
+    }
+    // sm2 diff: a file it cannot read is status 4 (idiff's); a folder goes with a folder only.
+    const std::string png = dir + "/x.png";
+    write_file(png, "not a PNG");
+    const Case diff_cases[] = {
+        {"diff " + dir + " " + fifo, dir + " is a folder and " + fifo + " is not"},
+        {"diff /dev/zero " + dir, dir + " is a folder and /dev/zero is not"},
+        {"diff /dev/zero " + png, "/dev/zero: is a character device"},
+        {"diff " + fifo + " " + png, fifo + ": is a FIFO"},
+    };
+    for (const Case& c : diff_cases) {
+        auto r = sm2(c.args);
+        EXPECT_EQ(r.status, 4) << c.args << ": " << r.err;
         EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
     }
     // stdin that never ends (/dev/zero) stops at the input size limit

@@ -6,6 +6,7 @@
 #include <OpenImageIO/strutil.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -135,13 +136,21 @@ bool heatmap(uint32_t width, uint32_t height, const float* a, const float* b, fl
     return rgba.get_pixels(rgba.roi(), TypeDesc::FLOAT, heat);
 }
 
-bool png_thumbnail(uint32_t width, uint32_t height, const float* rgba, uint32_t max_side, std::string* base64,
-                   std::string* error) {
+bool png_thumbnail(uint32_t width, uint32_t height, const float* rgba, uint32_t max_side, bool keep_peaks,
+                   std::string* base64, std::string* error) {
     using namespace OIIO;
     const ImageBuf image = wrap_rgba(width, height, rgba);
     const double shrink = std::min(1.0, static_cast<double>(max_side) / std::max(width, height));
     const int w = std::max(1, static_cast<int>(width * shrink + 0.5)), h = std::max(1, static_cast<int>(height * shrink + 0.5));
-    const ImageBuf small = ImageBufAlgo::resize(image, "", 0.0f, ROI(0, w, 0, h, 0, 1, 0, 4));
+    const ROI size(0, w, 0, h, 0, 1, 0, 4);
+    ImageBuf small;
+    if (keep_peaks) {
+        // dilate: the largest value in a window as wide as a thumbnail pixel; then point samples.
+        const int window = static_cast<int>(std::ceil(1.0 / shrink));
+        small = ImageBufAlgo::resample(ImageBufAlgo::dilate(image, window, window), false, size);
+    } else {
+        small = ImageBufAlgo::resize(image, "", 0.0f, size);
+    }
     std::vector<unsigned char> bytes;
     Filesystem::IOVecOutput memory(bytes);
     auto output = ImageOutput::create("thumbnail.png", &memory);

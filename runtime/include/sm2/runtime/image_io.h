@@ -73,8 +73,9 @@ enum class DiffVerdict { Pass, Warning, Failure };
 // A heat map of |a - b| (max over channels) scaled so that `scale` maps to full red (ImageBufAlgo's
 // absdiff, maxchan and color_map). Non-finite differences show black.
 [[nodiscard]] Image difference_heatmap(const Image& a, const Image& b, double scale);
-// The image shrunk to fit max_side x max_side, as 8-bit PNG bytes in base64 (for HTML reports).
-[[nodiscard]] std::string png_thumbnail_base64(const Image& image, uint32_t max_side);
+// The image shrunk to fit max_side x max_side, as 8-bit PNG bytes in base64 (for HTML reports);
+// `keep_peaks` makes each thumbnail pixel the largest of those it stands for (heat maps).
+[[nodiscard]] std::string png_thumbnail_base64(const Image& image, uint32_t max_side, bool keep_peaks = false);
 // A surface (level/face/slice 0) as float RGBA, as its format's decode gives it.
 [[nodiscard]] Image surface_image(const Surface& surface);
 void write_image(const Image& image, const std::string& path);
