@@ -153,7 +153,7 @@ int diff_folders(const DiffOptions& o, const runtime::DiffThresholds& t) {
         for (const auto& c : comparisons) j["images"].push_back(to_json(c));
         j["verdict"] = status_word(status);
         j["status"] = status;
-        std::cout << j.dump(2) << '\n';
+        std::cout << json_text(j) << '\n';
     } else {
         std::cout << comparisons.size() << " images: " << count[kDiffPass] << " pass, " << count[kDiffWarning]
                   << " warning, " << count[kDiffFailure] << " failure, " << count[kDiffSizeMismatch]
@@ -184,7 +184,7 @@ int diff_files(const DiffOptions& o, const runtime::DiffThresholds& t) {
         const nlohmann::ordered_json numbers = to_json(c);
         for (const auto& [key, value] : numbers.items())
             if (key != "name") j[key] = value;
-        std::cout << j.dump(2) << '\n';
+        std::cout << json_text(j) << '\n';
     } else if (!compared) {
         std::cout << status_word(c.status) << '\n';
     } else {

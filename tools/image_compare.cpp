@@ -188,6 +188,10 @@ nlohmann::ordered_json to_json(const ImageComparison& c) {
     return j;
 }
 
+std::string json_text(const nlohmann::ordered_json& j) {
+    return j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+}
+
 std::string html_row(const ImageComparison& c, const runtime::Image* a, const runtime::Image* b) {
     constexpr uint32_t kThumbnailSide = 160;
     auto cell = [](const runtime::Image* image, bool keep_peaks = false) -> std::string {

@@ -58,6 +58,9 @@ void print_report(std::ostream& out, const ImageComparison& c, const runtime::Di
 // One line: "name: VERDICT, max error 0.5 at (1, 1) R, PSNR 18 dB, 1 of 4 pixels over 0".
 [[nodiscard]] std::string summary_line(const ImageComparison& c);
 [[nodiscard]] nlohmann::ordered_json to_json(const ImageComparison& c);
+// Indented JSON text; bytes of names that are not UTF-8 (file names may be anything) become
+// U+FFFD instead of an exception.
+[[nodiscard]] std::string json_text(const nlohmann::ordered_json& j);
 
 // HTML: a row per comparison with its numbers and thumbnails of A, B and the heat map (built as
 // each pair is compared, so that a folder's images are not all held at once; a and b are null

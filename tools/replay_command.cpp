@@ -2,6 +2,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -161,7 +162,7 @@ void print_draw_json(const runtime::ReplayResult& result) {
         j["draws"].push_back(std::move(row));
     }
     j["total"] = draw_json(result.statistics);
-    std::cout << j.dump(2) << '\n';
+    std::cout << json_text(j) << '\n';
 }
 
 // "call 120/4000, frame 3" on one terminal line, at most ten times a second; calls as the
@@ -221,7 +222,11 @@ public:
     void missing_frames(uint32_t frames_written) {
         for (const auto& f : old_frames(golden_)) {
             const std::string name = f.filename().string();
-            if (std::stoul(name.substr(6, name.size() - 10)) < frames_written) continue;
+            // frame_NNNN.png (old_frames checked the digits); a number too large to parse is past the last.
+            uint64_t index = 0;
+            const char* digits = name.data() + 6;
+            const auto parsed = std::from_chars(digits, name.data() + name.size() - 4, index);
+            if (parsed.ec == std::errc() && index < frames_written) continue;
             std::cout << "compare " << name << ": " << status_word(kDiffUnreadable) << ": in " << golden_
                       << ", not written by the replay (" << frames_written << " frames)\n";
             status_ = kDiffUnreadable;
@@ -420,7 +425,7 @@ int run_bench(const BenchCliOptions& o) {
             {"run_seconds", nlohmann::ordered_json::array()},
             {"refused_calls", runs.front().refused}};
         for (const auto& run : runs) j["run_seconds"].push_back(run.seconds);
-        std::cout << j.dump(2) << '\n';
+        std::cout << json_text(j) << '\n';
         if (runs.front().ok()) return kOk;
         print_diagnostics(runs.front().diagnostics);
         return kInvalidInput;

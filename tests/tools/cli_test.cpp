@@ -775,6 +775,20 @@ TEST(CliDiff, FoldersMatchedByNameWithJsonAndHtml) {
     EXPECT_FALSE(exists(dir + "/h.png"));
 }
 
+// File names need not be UTF-8; JSON text must be: the byte 0xFF becomes U+FFFD.
+TEST(CliDiff, JsonOfFoldersWithNamesThatAreNotUtf8) {
+    const std::string dir = make_images();
+    const std::string left = make_dir("diff_utf_left"), right = make_dir("diff_utf_right");
+    std::filesystem::copy_file(dir + "/a.png", left + "/bad\xff.png");
+    std::filesystem::copy_file(dir + "/a.png", right + "/bad\xff.png");
+    auto r = sm2("diff " + left + " " + right + " --json");
+    EXPECT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j["images"].size(), 1u);
+    EXPECT_EQ(j["images"][0]["name"], "bad\xef\xbf\xbd.png");
+    EXPECT_EQ(j["images"][0]["verdict"], "PASS");
+}
+
 TEST(CliDiff, StdinAndNanTolerance) {
     const std::string dir = make_images();
     // '-' reads one of the two images from stdin (any format: PNG here)
