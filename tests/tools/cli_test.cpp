@@ -519,6 +519,12 @@ TEST(CliReplay, CompareChecksEachFrameAgainstGoldenFrames) {
     EXPECT_NE(long_golden.out.find("compare frame_0002.png: UNREADABLE: in " + dir + "/g/long, not written by the replay (2 frames)"),
               std::string::npos) << long_golden.out;
     EXPECT_EQ(sm2(replay + "/nonexistent").status, 4);
+    // a golden frame number past any integer is a frame the replay did not write
+    std::filesystem::copy(dir + "/g/exact", dir + "/g/huge");
+    write_file(dir + "/g/huge/frame_99999999999999999999999.png", "x");
+    auto huge = sm2(replay + "/g/huge");
+    EXPECT_EQ(huge.status, 4) << huge.out << huge.err;
+    EXPECT_NE(huge.out.find("compare frame_99999999999999999999999.png: UNREADABLE: in "), std::string::npos) << huge.out;
 }
 
 // A sample scene against its own earlier replay: every frame passes.
