@@ -422,6 +422,9 @@ py::dict statistics_dict(const runtime::DrawStatistics& s) {
     d["vertices_shaded"] = s.vertices_shaded;
     d["primitives"] = s.primitives;
     d["pixels_shaded"] = s.pixels_shaded;
+    d["pixels_rasterized"] = s.pixels_rasterized;
+    d["pixels_killed"] = s.pixels_killed;
+    d["pixels_written"] = s.pixels_written;
     d["pipelines_built"] = s.pipelines_built;
     d["pipeline_seconds"] = s.pipeline_seconds;
     d["vertex_seconds"] = s.vertex_seconds;

@@ -54,13 +54,17 @@ constexpr Examples kExamples[] = {
                "  sm2 replay samples/scenes/09_lake.sm2cs -o out/lake\n"
                "  sm2 replay scene.sm2cb -o out/scene --overwrite --threads 1 --engine interpreter\n"
                "  sm2 replay - -o out/stdin --quiet < scene.sm2cs\n"
-               "  sm2 replay app.trace -o out/app                an apitrace D3D9 capture\n"},
+               "  sm2 replay app.trace -o out/app                an apitrace D3D9 capture\n"
+               "  sm2 replay scene.sm2cs -o out/scene --overwrite --compare golden/scene --fail 0.004\n"
+               "  sm2 replay scene.sm2cs -o out/scene --overwrite --quiet --stats table\n"},
     {"bench", "Examples:\n"
               "  sm2 bench samples/scenes/27_final_combine.sm2cs\n"
-              "  sm2 bench scene.sm2cs --repeat 20 --threads 1 --precision fp24\n"},
+              "  sm2 bench scene.sm2cs --repeat 20 --threads 1 --precision fp24\n"
+              "  sm2 bench scene.sm2cs --json\n"},
     {"diff", "Examples:\n"
              "  sm2 diff out/lake/frame_0000.png reference.png\n"
-             "  sm2 diff a.exr b.exr --tolerance 0.001 --heatmap diff.png --heatmap-scale 0.01\n"},
+             "  sm2 diff a.exr b.exr --fail 0.004 --warn 0.001 --heatmap diff.png --heatmap-scale 0.01\n"
+             "  sm2 diff out/lake golden/lake --failpercent 0.1 --json --html report.html\n"},
 };
 
 CLI::App* find_command(CLI::App& app, const std::vector<std::string>& path) {

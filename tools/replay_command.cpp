@@ -2,6 +2,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -13,7 +14,10 @@
 #include <thread>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "commands.h"
+#include "image_compare.h"
 #include "io.h"
 #include "sm2/runtime/stream_assembler.h"
 #include "stream_io.h"
@@ -118,7 +122,49 @@ struct ReplayCliOptions {
     NumericCliOptions numeric;
     bool quiet = false;
     bool overwrite = false;
+    std::string compare;  // golden folder
+    ThresholdOptions thresholds;
+    std::string stats;    // "", "table" or "json"
 };
+
+// --stats: a row per draw, then the replay's totals.
+void print_draw_table(const runtime::ReplayResult& result) {
+    std::printf("%7s %7s %6s %11s %11s %11s %11s %9s %10s %10s  %s\n", "call", "line", "frame", "rasterized", "shaded",
+                "killed", "written", "vertices", "primitives", "ms", "draw");
+    for (const auto& d : result.draws) {
+        const auto& s = d.statistics;
+        std::printf("%7zu %7u %6zu %11llu %11llu %11llu %11llu %9llu %10llu %10.3f  %s\n", d.call, d.line, d.frame,
+                    static_cast<unsigned long long>(s.pixels_rasterized), static_cast<unsigned long long>(s.pixels_shaded),
+                    static_cast<unsigned long long>(s.pixels_killed), static_cast<unsigned long long>(s.pixels_written),
+                    static_cast<unsigned long long>(s.vertices_shaded), static_cast<unsigned long long>(s.primitives),
+                    d.seconds * 1000.0, d.name.c_str());
+    }
+    const auto& s = result.statistics;
+    std::printf("%7s %7s %6s %11llu %11llu %11llu %11llu %9llu %10llu %10s  %zu draws\n", "total", "", "",
+                static_cast<unsigned long long>(s.pixels_rasterized), static_cast<unsigned long long>(s.pixels_shaded),
+                static_cast<unsigned long long>(s.pixels_killed), static_cast<unsigned long long>(s.pixels_written),
+                static_cast<unsigned long long>(s.vertices_shaded), static_cast<unsigned long long>(s.primitives), "",
+                result.draws.size());
+}
+
+nlohmann::ordered_json draw_json(const runtime::DrawStatistics& s) {
+    return {{"pixels_rasterized", s.pixels_rasterized}, {"pixels_shaded", s.pixels_shaded},
+            {"pixels_killed", s.pixels_killed},         {"pixels_written", s.pixels_written},
+            {"vertices_shaded", s.vertices_shaded},     {"primitives", s.primitives}};
+}
+
+void print_draw_json(const runtime::ReplayResult& result) {
+    nlohmann::ordered_json j = {{"calls", result.calls}, {"frames", result.frames.size()}, {"seconds", result.seconds},
+                                {"refused_calls", result.refused}, {"draws", nlohmann::ordered_json::array()}};
+    for (const auto& d : result.draws) {
+        nlohmann::ordered_json row = {{"call", d.call}, {"line", d.line}, {"record", d.record}, {"frame", d.frame},
+                                      {"name", d.name}, {"seconds", d.seconds}};
+        row.update(draw_json(d.statistics));
+        j["draws"].push_back(std::move(row));
+    }
+    j["total"] = draw_json(result.statistics);
+    std::cout << json_text(j) << '\n';
+}
 
 // "call 120/4000, frame 3" on one terminal line, at most ten times a second; calls as the
 // summary counts them (comments and blank lines are statements, not calls).
@@ -157,6 +203,52 @@ std::vector<std::filesystem::path> old_frames(const std::string& folder) {
     }
     std::sort(frames.begin(), frames.end());
     return frames;
+}
+
+// --compare: each frame, once written, against the golden folder's file of the same name; then
+// the golden frames the replay did not write.
+class FrameComparer {
+public:
+    FrameComparer(std::string golden, runtime::DiffThresholds thresholds)
+        : golden_(std::move(golden)), thresholds_(thresholds) {}
+    void compare(const std::string& written) {
+        const std::string name = std::filesystem::path(written).filename().string();
+        const ImageComparison c =
+            compare_files(name, written, (std::filesystem::path(golden_) / name).string(), thresholds_);
+        std::cout << "compare " << summary_line(c) << '\n';
+        status_ = std::max(status_, c.status);
+        ++compared_;
+    }
+    // The golden frames past the last one written.
+    void missing_frames(uint32_t frames_written) {
+        for (const auto& f : old_frames(golden_)) {
+            const std::string name = f.filename().string();
+            // frame_NNNN.png (old_frames checked the digits); a number too large to parse is past the last.
+            uint64_t index = 0;
+            const char* digits = name.data() + 6;
+            const auto parsed = std::from_chars(digits, name.data() + name.size() - 4, index);
+            if (parsed.ec == std::errc() && index < frames_written) continue;
+            std::cout << "compare " << name << ": " << status_word(kDiffUnreadable) << ": in " << golden_
+                      << ", not written by the replay (" << frames_written << " frames)\n";
+            status_ = kDiffUnreadable;
+        }
+    }
+    [[nodiscard]] int status() const { return status_; }
+    [[nodiscard]] size_t compared() const { return compared_; }
+
+private:
+    std::string golden_;
+    runtime::DiffThresholds thresholds_;
+    int status_ = kDiffPass;
+    size_t compared_ = 0;
+};
+
+// A frame Present wrote into `output`: output/frame_NNNN.png.
+bool is_frame_of(const std::string& path, const std::string& output) {
+    const std::filesystem::path p(path);
+    const std::string name = p.filename().string();
+    return p.parent_path() == std::filesystem::path(output) && name.size() >= 14 && name.rfind("frame_", 0) == 0 &&
+           name.ends_with(".png");
 }
 
 // The output folder, created, with no frames of an earlier replay left unless --overwrite
@@ -226,12 +318,30 @@ int run_replay_trace(const ReplayCliOptions& o) {
 int run_replay(const ReplayCliOptions& o) {
     if (!o.numeric.check("replay")) return kBadUsage;
     if (o.stream.ends_with(".trace")) return run_replay_trace(o);
+    if (o.stats == "json" && !o.compare.empty()) {
+        std::cerr << "sm2 replay: --stats json keeps stdout for the JSON alone: run --compare separately\n";
+        return kBadUsage;
+    }
+    std::optional<FrameComparer> comparer;
+    if (!o.compare.empty()) {
+        std::error_code golden_error;
+        if (!std::filesystem::is_directory(o.compare, golden_error)) {
+            std::cerr << "sm2 replay: --compare " << o.compare << ": not a folder\n";
+            return kDiffUnreadable;
+        }
+        comparer.emplace(o.compare, o.thresholds.thresholds());
+    }
     auto loaded = load_stream(o.stream, "replay", o.numeric.read_root);
     if (!loaded) return kInvalidInput;
     if (auto status = prepare_output(o)) return *status;
     runtime::DeviceOptions device_options;
     device_options.output_dir = o.output;
     o.numeric.apply(device_options);
+    if (comparer)
+        device_options.write_image = [&comparer, &o](const runtime::Surface& surface, const std::string& path) {
+            runtime::write_surface(surface, path);
+            if (is_frame_of(path, o.output)) comparer->compare(path);  // the file as written, as sm2 diff reads it
+        };
     runtime::Device device(device_options);
 
     runtime::ReplayOptions options = replay_options(*loaded);
@@ -243,11 +353,14 @@ int run_replay(const ReplayCliOptions& o) {
         progress.update(done, total, calls_before[std::min(done, calls_before.size() - 1)], calls_before.back(),
                         device.frames_presented());
     };
+    options.per_draw_statistics = !o.stats.empty();
     runtime::Replayer replayer(device, options);
     const runtime::ReplayResult result = replayer.replay(loaded->stream);
     progress.finish();
 
-    if (!o.quiet) {
+    if (o.stats == "json") {  // stdout holds the JSON alone
+        print_draw_json(result);
+    } else if (!o.quiet) {
         for (size_t i = 0; i < result.frames.size(); ++i) {
             const auto& f = result.frames[i];
             char name[32];
@@ -257,11 +370,23 @@ int run_replay(const ReplayCliOptions& o) {
         }
     }
     const auto& s = result.statistics;
-    std::cout << result.frames.size() << " frames, " << result.calls << " calls in " << fixed(result.seconds, 3)
-              << " s: " << s.draws << " draws, " << s.vertices_shaded << " vertices, " << s.primitives
-              << " primitives, " << s.pixels_shaded << " pixels shaded, " << s.pipelines_built
-              << " pipelines built\n";
+    if (o.stats == "table") print_draw_table(result);
+    if (o.stats != "json")
+        std::cout << result.frames.size() << " frames, " << result.calls << " calls in " << fixed(result.seconds, 3)
+                  << " s: " << s.draws << " draws, " << s.vertices_shaded << " vertices, " << s.primitives
+                  << " primitives, " << s.pixels_shaded << " pixels shaded, " << s.pipelines_built
+                  << " pipelines built\n";
     print_diagnostics(result.diagnostics);
+    if (comparer) {
+        comparer->missing_frames(device.frames_presented());
+        int status = comparer->status();
+        if (!result.ok()) {  // a replay with refused calls does not pass
+            std::cerr << "sm2 replay: " << result.refused << " of " << result.calls << " calls refused\n";
+            status = std::max(status, static_cast<int>(kDiffFailure));
+        }
+        std::cout << comparer->compared() << " frames compared with " << o.compare << ": " << status_word(status) << '\n';
+        return status;
+    }
     if (!result.ok()) {
         std::cerr << "sm2 replay: " << result.refused << " of " << result.calls << " calls refused\n";
         return kInvalidInput;
@@ -276,7 +401,13 @@ struct BenchCliOptions {
     std::string stream;
     unsigned repeat = 5;
     NumericCliOptions numeric;
+    bool json = false;
 };
+
+// count / seconds; JSON null where the time is 0.
+nlohmann::ordered_json json_rate(double count, double seconds) {
+    return seconds > 0.0 ? nlohmann::ordered_json(count / seconds) : nlohmann::ordered_json();
+}
 
 std::string rate(double count, double seconds) {
     if (seconds <= 0.0) return "inf";
@@ -311,6 +442,40 @@ int run_bench(const BenchCliOptions& o) {
     const runtime::ReplayResult& median = runs[order[order.size() / 2]];
     const runtime::ReplayResult& best = runs[order.front()];
     const auto& s = median.statistics;
+    if (o.json) {
+        const auto& first = runs.front().statistics;
+        uint64_t later = 0;
+        for (size_t i = 1; i < runs.size(); ++i) later += runs[i].statistics.routines_compiled;
+        nlohmann::ordered_json j = {
+            {"stream", loaded->file_name},
+            {"runs", o.repeat},
+            {"threads", o.numeric.threads},
+            {"engine", o.numeric.engine == "jit" && emu::jit::available() ? "jit" : "interpreter"},
+            {"calls", median.calls},
+            {"frames", median.frames.size()},
+            {"draws", s.draws},
+            {"vertices_shaded", s.vertices_shaded},
+            {"primitives", s.primitives},
+            {"pixels_shaded", s.pixels_shaded},
+            {"median_seconds", median.seconds},
+            {"best_seconds", best.seconds},
+            {"frames_per_second", json_rate(static_cast<double>(median.frames.size()), median.seconds)},
+            {"pixels_shaded_per_second", json_rate(static_cast<double>(s.pixels_shaded), median.seconds)},
+            {"vertices_per_second", json_rate(static_cast<double>(s.vertices_shaded), median.seconds)},
+            {"draws_per_second", json_rate(static_cast<double>(s.draws), median.seconds)},
+            {"stage_seconds",
+             {{"pipelines", s.pipeline_seconds}, {"vertex", s.vertex_seconds}, {"setup", s.setup_seconds}, {"pixel", s.pixel_seconds}}},
+            {"routines_compiled_first_run", first.routines_compiled},
+            {"compile_seconds_first_run", first.compile_seconds},
+            {"routines_compiled_later_runs", later},
+            {"run_seconds", nlohmann::ordered_json::array()},
+            {"refused_calls", runs.front().refused}};
+        for (const auto& run : runs) j["run_seconds"].push_back(run.seconds);
+        std::cout << json_text(j) << '\n';
+        if (runs.front().ok()) return kOk;
+        print_diagnostics(runs.front().diagnostics);
+        return kInvalidInput;
+    }
 
     std::cout << loaded->file_name << ": " << median.calls << " calls, " << median.frames.size() << " frames, "
               << s.draws << " draws, " << s.vertices_shaded << " vertices, " << s.pixels_shaded
@@ -365,6 +530,16 @@ void add_replay_commands(CLI::App& app, int& status) {
     replay->add_flag("--overwrite", r->overwrite, "Replace the frames (frame_NNNN.png) an earlier replay left in the folder");
     r->numeric.add_to(*replay);
     replay->add_flag("-q,--quiet", r->quiet, "Print only the summary (no per-frame lines, no progress)");
+    replay->add_option("--compare", r->compare,
+                       "Golden folder: each frame, once written, is compared with the file of the same name there "
+                       "(as sm2 diff; --fail, --warn, --failpercent, --hardfail); exit as sm2 diff: 0 pass, 1 "
+                       "warning, 2 failure (or refused calls), 3 sizes differ, 4 a frame missing on either side");
+    r->thresholds.add_to(*replay);
+    replay->add_option("--stats", r->stats,
+                       "Per draw: call number, line, frame, pixels rasterized, shaded, killed (texkill), written, "
+                       "vertices, primitives and time; 'table' after the frames, or 'json' (stdout then holds the "
+                       "JSON alone)")
+        ->check(CLI::IsMember({"table", "json"}));
     replay->callback([r, &status] { status = run_replay(*r); });
 
     auto b = std::make_shared<BenchCliOptions>();
@@ -375,6 +550,7 @@ void add_replay_commands(CLI::App& app, int& status) {
         ->required();
     bench->add_option("--repeat", b->repeat, "Runs (default 5)")->check(CLI::Range(1u, 100000u));
     b->numeric.add_to(*bench);
+    bench->add_flag("--json", b->json, "The counts, times and rates as JSON on stdout");
     bench->callback([b, &status] { status = run_bench(*b); });
 }
 

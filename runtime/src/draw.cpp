@@ -117,13 +117,14 @@ struct TileWorker {
     PixelLanes lanes;
     std::vector<Quad> quads;
     TextureSampler sampler;
-    uint64_t pixels_shaded = 0;
+    uint64_t pixels_shaded = 0, pixels_rasterized = 0, pixels_killed = 0, pixels_written = 0;
 };
 
 void shade_quads(const PixelPipeline& pipe, const PrimitiveSetup& prim, std::span<const Quad> quads,
                  TileWorker& w) {
     interpolate(prim, quads, pipe.ps_varyings, w.batch, w.lanes);
     emu::LaneMask live = w.lanes.coverage;
+    w.pixels_rasterized += static_cast<uint64_t>(std::popcount(live));
     MergeInput input = pipe.merge_template;
     input.batch = &w.batch;
     input.lanes = &w.lanes;
@@ -145,9 +146,10 @@ void shade_quads(const PixelPipeline& pipe, const PrimitiveSetup& prim, std::spa
         w.batch.render_target(0) = w.batch.input(0);
     }
     w.pixels_shaded += static_cast<uint64_t>(std::popcount(live));
+    w.pixels_killed += static_cast<uint64_t>(std::popcount(live & w.batch.killed));
     input.live = live;
     RenderTargets targets = pipe.targets;
-    (void)merge(pipe.merger, targets, input);
+    w.pixels_written += static_cast<uint64_t>(std::popcount(merge(pipe.merger, targets, input)));
 }
 
 void process_tile(const PixelPipeline& pipe, std::span<const PrimitiveSetup> setups,
@@ -255,9 +257,9 @@ TileBins bin_by_tile(std::span<const PrimitiveSetup> setups, uint32_t width, uin
 }
 
 // Tiles are independent (disjoint pixels and bytes): workers take whole tiles from a shared
-// counter, and any number of threads gives the same bytes. Returns the pixels shaded.
-uint64_t run_tiles(const PixelPipeline& pipe, std::span<const PrimitiveSetup> setups, const TileBins& bins,
-                   const TextureSampler& sampler, WorkerPool& pool) {
+// counter, and any number of threads gives the same bytes. Adds the pixel counts to `stats`.
+void run_tiles(const PixelPipeline& pipe, std::span<const PrimitiveSetup> setups, const TileBins& bins,
+               const TextureSampler& sampler, WorkerPool& pool, DrawStatistics& stats) {
     const unsigned thread_count =
         static_cast<unsigned>(std::clamp<size_t>(pool.size(), 1, std::max<size_t>(bins.busy.size(), 1)));
     std::vector<TileWorker> workers(thread_count);
@@ -272,9 +274,12 @@ uint64_t run_tiles(const PixelPipeline& pipe, std::span<const PrimitiveSetup> se
             process_tile(pipe, setups, bins.primitives[t], tile_rect(tx, ty), w);
         }
     });
-    uint64_t pixels = 0;
-    for (const auto& w : workers) pixels += w.pixels_shaded;
-    return pixels;
+    for (const auto& w : workers) {
+        stats.pixels_shaded += w.pixels_shaded;
+        stats.pixels_rasterized += w.pixels_rasterized;
+        stats.pixels_killed += w.pixels_killed;
+        stats.pixels_written += w.pixels_written;
+    }
 }
 
 }  // namespace
@@ -416,7 +421,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     }
     sampler.prepare();
     if (!pool_) pool_ = std::make_unique<WorkerPool>(options_.threads);
-    stats_.pixels_shaded += run_tiles(pipe, setups, bins, sampler, *pool_);
+    run_tiles(pipe, setups, bins, sampler, *pool_, stats_);
 
     stats_.pixel_seconds += lap(clock);
     ++stats_.draws;

@@ -15,7 +15,7 @@
 
 namespace sm2::runtime::image_codec {
 
-constexpr uint32_t kAbiVersion = 2;
+constexpr uint32_t kAbiVersion = 3;
 
 enum class PixelType : int { U8, U16, Half, Float, Other };
 
@@ -25,6 +25,13 @@ struct Info {
 };
 
 enum class OpenStatus : int { Ok, NoReader, CannotOpen };
+
+// ImageBufAlgo::compare's results for two float RGBA images (sm2 diff).
+struct CompareStats {
+    double mean_error = 0, rms_error = 0, psnr = 0, max_error = 0;
+    int max_x = 0, max_y = 0, max_channel = 0;
+    uint64_t warn_pixels = 0, fail_pixels = 0;
+};
 
 struct Functions {
     uint32_t abi_version;
@@ -42,6 +49,18 @@ struct Functions {
     // failed: ...") on failure.
     bool (*write)(const char* path, uint32_t width, uint32_t height, bool eight_bit, const void* rgba,
                   std::string* error);
+    // Two float RGBA images of width x height: ImageBufAlgo::compare with these thresholds.
+    bool (*compare)(uint32_t width, uint32_t height, const float* a, const float* b, float fail_threshold,
+                    float warn_threshold, CompareStats* stats, std::string* error);
+    // |a - b|, its largest channel divided by `scale`, through a black-to-red color_map: float
+    // RGBA (alpha 1) into `heat` (width x height x 4).
+    bool (*heatmap)(uint32_t width, uint32_t height, const float* a, const float* b, float scale, float* heat,
+                    std::string* error);
+    // The image resized to fit max_side x max_side, as an 8-bit PNG in memory, base64-encoded
+    // into *base64 (for an HTML data: URI). `keep_peaks`: each thumbnail pixel is the largest of
+    // the pixels it stands for (a heat map's lone differing pixels stay visible), else filtered.
+    bool (*png_thumbnail)(uint32_t width, uint32_t height, const float* rgba, uint32_t max_side, bool keep_peaks,
+                          std::string* base64, std::string* error);
 };
 
 // The module's functions, loaded on the first call (thread-safe). nullptr when the module cannot

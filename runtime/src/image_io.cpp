@@ -82,14 +82,6 @@ void write_oiio(const Image& image, const std::string& path, bool eight_bit) {
     if (!ok) fail(path, error);
 }
 
-// |a - b| of one channel: 0 when equal (infinities of one sign, or both NaN), infinity when one
-// side is NaN or infinite and the other is not.
-double channel_error(float a, float b) {
-    if (a == b || (std::isnan(a) && std::isnan(b))) return 0.0;
-    const double d = std::fabs(static_cast<double>(a) - static_cast<double>(b));
-    return std::isnan(d) ? std::numeric_limits<double>::infinity() : d;
-}
-
 void check_same_size(const Image& a, const Image& b) {
     check_image(a, "first image");
     check_image(b, "second image");
@@ -113,11 +105,7 @@ void write_image(const Image& image, const std::string& path) {
     fail(path, "unknown image file extension (expected .png, .tga, .exr or .raw)");
 }
 
-void write_surface(const Surface& surface, const std::string& path) {
-    if (surface.width() == 0 || surface.height() == 0) fail(path, "empty surface");
-    // Checked before decoding so that an unknown extension is reported without work.
-    if (file_kind(path) == FileKind::Other)
-        fail(path, "unknown image file extension (expected .png, .tga, .exr or .raw)");
+Image surface_image(const Surface& surface) {
     Image image;
     image.width = surface.width();
     image.height = surface.height();
@@ -127,7 +115,15 @@ void write_surface(const Surface& surface, const std::string& path) {
             const Float4 v = surface.read(x, y, 0);
             std::copy(v.begin(), v.end(), image.rgba.begin() + static_cast<std::ptrdiff_t>((size_t{y} * image.width + x) * 4));
         }
-    write_image(image, path);
+    return image;
+}
+
+void write_surface(const Surface& surface, const std::string& path) {
+    if (surface.width() == 0 || surface.height() == 0) fail(path, "empty surface");
+    // Checked before decoding so that an unknown extension is reported without work.
+    if (file_kind(path) == FileKind::Other)
+        fail(path, "unknown image file extension (expected .png, .tga, .exr or .raw)");
+    write_image(surface_image(surface), path);
 }
 
 Image read_image(const std::string& path, const ImageReadLimits& limits) {
@@ -163,16 +159,7 @@ Image read_image(const std::string& path, const ImageReadLimits& limits) {
             if (texture.type() != TextureType::Texture2D) fail(path, "cube and volume DDS files cannot be compared");
             const Surface& s = texture.surface(0, 0);
             check_size(s.width(), s.height());
-            Image image;
-            image.width = s.width();
-            image.height = s.height();
-            image.rgba.resize(size_t{image.width} * image.height * 4);
-            for (uint32_t y = 0; y < image.height; ++y)
-                for (uint32_t x = 0; x < image.width; ++x) {
-                    const Float4 v = s.read(x, y, 0);
-                    std::copy(v.begin(), v.end(), image.rgba.begin() + static_cast<std::ptrdiff_t>((size_t{y} * image.width + x) * 4));
-                }
-            return image;
+            return surface_image(s);
         }
     }
     const image_codec::Functions& f = codec(path);
@@ -210,47 +197,76 @@ Image read_image(const std::string& path, const ImageReadLimits& limits) {
     return image;
 }
 
-ImageDifference compare_images(const Image& a, const Image& b, double tolerance) {
-    check_same_size(a, b);
-    ImageDifference diff;
-    double sum = 0, sum_sq = 0;
-    const size_t pixels = size_t{a.width} * a.height;
-    for (size_t i = 0; i < pixels; ++i) {
-        bool differs = false;
-        for (size_t c = 0; c < 4; ++c) {
-            const double e = channel_error(a.rgba[i * 4 + c], b.rgba[i * 4 + c]);
-            diff.max_abs_error = std::max(diff.max_abs_error, e);
-            sum += e;
-            sum_sq += e * e;
-            if (e > tolerance) differs = true;
-        }
-        if (differs) ++diff.differing_pixels;
+DiffVerdict diff_verdict(const ImageDifference& d, const DiffThresholds& t) {
+    const double allowed_failures = t.fail_percent / 100.0 * static_cast<double>(d.pixels);
+    if (static_cast<double>(d.differing_pixels) > allowed_failures || d.max_abs_error > t.hard_fail)
+        return DiffVerdict::Failure;
+    if (d.warning_pixels > 0 || d.differing_pixels > 0) return DiffVerdict::Warning;
+    return DiffVerdict::Pass;
+}
+
+const char* to_string(DiffVerdict v) {
+    switch (v) {
+    case DiffVerdict::Pass: return "PASS";
+    case DiffVerdict::Warning: return "WARNING";
+    case DiffVerdict::Failure: return "FAILURE";
     }
-    const double samples = static_cast<double>(pixels) * 4.0;
-    diff.mean_abs_error = pixels == 0 ? 0.0 : sum / samples;
-    const double mse = pixels == 0 ? 0.0 : sum_sq / samples;
-    diff.psnr_db = mse == 0.0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(1.0 / mse);
-    return diff;
+    return "?";
+}
+
+ImageDifference compare_images(const Image& a, const Image& b, const DiffThresholds& thresholds) {
+    check_same_size(a, b);
+    ImageDifference d;
+    d.pixels = uint64_t{a.width} * a.height;
+    if (d.pixels == 0) {  // nothing differs (OpenImageIO would divide by zero)
+        d.psnr_db = std::numeric_limits<double>::infinity();
+        return d;
+    }
+    const image_codec::Functions& f = codec("image comparison");
+    image_codec::CompareStats stats;
+    std::string error;
+    if (!f.compare(a.width, a.height, a.rgba.data(), b.rgba.data(), static_cast<float>(thresholds.fail),
+                   static_cast<float>(thresholds.warn), &stats, &error))
+        throw ImageIoError(error);
+    d.max_abs_error = stats.max_error;
+    d.worst_x = static_cast<uint32_t>(stats.max_x);
+    d.worst_y = static_cast<uint32_t>(stats.max_y);
+    d.worst_channel = static_cast<uint32_t>(stats.max_channel);
+    d.mean_abs_error = stats.mean_error;
+    d.rms_error = stats.rms_error;
+    d.psnr_db = stats.psnr;
+    d.differing_pixels = stats.fail_pixels;
+    d.warning_pixels = stats.warn_pixels;
+    return d;
+}
+
+ImageDifference compare_images(const Image& a, const Image& b, double tolerance) {
+    return compare_images(a, b, DiffThresholds{tolerance, tolerance});
 }
 
 Image difference_heatmap(const Image& a, const Image& b, double scale) {
     check_same_size(a, b);
     if (!(scale > 0.0) || std::isinf(scale))
         throw ImageIoError("heat map scale must be a positive number (got " + std::to_string(scale) + ")");
+    const image_codec::Functions& f = codec("heat map");
     Image map;
     map.width = a.width;
     map.height = a.height;
     map.rgba.resize(a.rgba.size());
-    for (size_t i = 0; i < size_t{a.width} * a.height; ++i) {
-        double e = 0;
-        for (size_t c = 0; c < 4; ++c) e = std::max(e, channel_error(a.rgba[i * 4 + c], b.rgba[i * 4 + c]));
-        // black (equal) to full red (an error of `scale` or more)
-        map.rgba[i * 4 + 0] = static_cast<float>(std::min(e / scale, 1.0));
-        map.rgba[i * 4 + 1] = 0.0f;
-        map.rgba[i * 4 + 2] = 0.0f;
-        map.rgba[i * 4 + 3] = 1.0f;
-    }
+    std::string error;
+    if (!f.heatmap(a.width, a.height, a.rgba.data(), b.rgba.data(), static_cast<float>(scale), map.rgba.data(), &error))
+        throw ImageIoError(error);
     return map;
+}
+
+std::string png_thumbnail_base64(const Image& image, uint32_t max_side, bool keep_peaks) {
+    check_image(image, "thumbnail");
+    if (image.width == 0 || image.height == 0 || max_side == 0) throw ImageIoError("thumbnail: empty image");
+    const image_codec::Functions& f = codec("thumbnail");
+    std::string base64, error;
+    if (!f.png_thumbnail(image.width, image.height, image.rgba.data(), max_side, keep_peaks, &base64, &error))
+        throw ImageIoError(error);
+    return base64;
 }
 
 }  // namespace sm2::runtime

@@ -824,6 +824,9 @@ DrawStatistics difference(const DrawStatistics& after, const DrawStatistics& bef
     d.vertices_shaded = after.vertices_shaded - before.vertices_shaded;
     d.primitives = after.primitives - before.primitives;
     d.pixels_shaded = after.pixels_shaded - before.pixels_shaded;
+    d.pixels_rasterized = after.pixels_rasterized - before.pixels_rasterized;
+    d.pixels_killed = after.pixels_killed - before.pixels_killed;
+    d.pixels_written = after.pixels_written - before.pixels_written;
     d.pipelines_built = after.pipelines_built - before.pipelines_built;
     d.pipeline_seconds = after.pipeline_seconds - before.pipeline_seconds;
     d.vertex_seconds = after.vertex_seconds - before.vertex_seconds;
@@ -904,8 +907,14 @@ ReplayResult Replayer::replay(const cs::Stream& stream) {
         if (st.kind == cs::Statement::Kind::Call) {
             ++result.calls;
             ++frame_calls;
+            const DrawStatistics before = options_.per_draw_statistics ? device_.statistics() : DrawStatistics{};
+            const auto call_start = options_.per_draw_statistics ? Clock::now() : Clock::time_point{};
             const bool ok = execute(st, i + 1);
             if (!ok) ++result.refused;
+            if (options_.per_draw_statistics && ok && device_.statistics().draws != before.draws)
+                result.draws.push_back(DrawRecord{result.calls, st.line, i + 1, st.name, result.frames.size(),
+                                                  seconds_between(call_start, Clock::now()),
+                                                  difference(device_.statistics(), before)});
             if (ok && st.name == "Present") {
                 const auto now = Clock::now();
                 const DrawStatistics now_stats = device_.statistics();

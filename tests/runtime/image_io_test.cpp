@@ -169,7 +169,40 @@ TEST(CompareImages, NanAgainstNanIsEqualNanAgainstANumberIsInfinitelyWrong) {
     const Image b = make_image(1, 2, {nan, 0, 0, 1, 0.0f, 0, 0, 1});
     const ImageDifference d = compare_images(a, b, 1.0);
     EXPECT_TRUE(std::isinf(d.max_abs_error));
-    EXPECT_EQ(d.differing_pixels, 1u);
+    EXPECT_EQ(d.worst_x, 0u);
+    EXPECT_EQ(d.worst_y, 1u);
+    EXPECT_EQ(d.worst_channel, 0u);
+    // ImageBufAlgo::compare leaves the non-finite channel out of the counts and means; the
+    // infinite max error fails through the hard-fail threshold.
+    EXPECT_EQ(d.differing_pixels, 0u);
+    EXPECT_EQ(d.mean_abs_error, 0.0);
+    EXPECT_EQ(diff_verdict(d, DiffThresholds{1.0, 1.0}), DiffVerdict::Failure);
+}
+
+TEST(CompareImages, WorstPixelRmsAndWarnings) {
+    // 2x2; errors: (1,0) green 0.25, (0,1) alpha 0.125, (1,1) blue 0.5
+    const Image a = make_image(2, 2, std::vector<float>(16, 0.0f));
+    Image b = a;
+    b.rgba[1 * 4 + 1] = 0.25f;
+    b.rgba[2 * 4 + 3] = 0.125f;
+    b.rgba[3 * 4 + 2] = 0.5f;
+    const ImageDifference d = compare_images(a, b, DiffThresholds{0.3, 0.2});
+    EXPECT_EQ(d.pixels, 4u);
+    EXPECT_DOUBLE_EQ(d.max_abs_error, 0.5);
+    EXPECT_EQ(d.worst_x, 1u);
+    EXPECT_EQ(d.worst_y, 1u);
+    EXPECT_EQ(d.worst_channel, 2u);
+    // RMS = sqrt((0.0625 + 0.015625 + 0.25) / 16) = sqrt(0.0205078125); PSNR = 20 log10(1 / RMS)
+    EXPECT_NEAR(d.rms_error, 0.143205, 1e-6);
+    EXPECT_NEAR(d.psnr_db, 16.88, 0.005);
+    EXPECT_EQ(d.warning_pixels, 2u);    // 0.25 and 0.5 are over 0.2
+    EXPECT_EQ(d.differing_pixels, 1u);  // 0.5 only is over 0.3
+    EXPECT_EQ(diff_verdict(d, DiffThresholds{0.3, 0.2}), DiffVerdict::Failure);
+    EXPECT_EQ(diff_verdict(d, DiffThresholds{0.3, 0.2, 25.0}), DiffVerdict::Warning);  // 1 of 4 allowed
+    EXPECT_EQ(diff_verdict(d, DiffThresholds{0.3, 0.2, 25.0, 0.4}), DiffVerdict::Failure);
+    EXPECT_EQ(diff_verdict(compare_images(a, b, DiffThresholds{0.6, 0.2}), DiffThresholds{0.6, 0.2}), DiffVerdict::Warning);
+    EXPECT_EQ(diff_verdict(compare_images(a, b, 0.5), DiffThresholds{0.5, 0.5}), DiffVerdict::Pass);
+    EXPECT_STREQ(to_string(DiffVerdict::Warning), "WARNING");
 }
 
 TEST(CompareImages, SizeMismatchIsAnError) {
@@ -196,6 +229,53 @@ TEST(CompareImages, HeatmapIsRedScaledByTheLargestChannelError) {
     // errors beyond the scale saturate at full red
     expect_pixel(difference_heatmap(a, b, 0.25), 0, 0, 1.0f, 0, 0, 1);
     EXPECT_THROW((void)difference_heatmap(a, b, 0.0), ImageIoError);
+}
+
+TEST_F(ImageIo, PngThumbnailIsAShrunkPng) {
+    Image big = make_image(300, 150, std::vector<float>(300 * 150 * 4, 1.0f));
+    const std::string base64 = png_thumbnail_base64(big, 100);
+    EXPECT_EQ(base64.rfind("iVBORw0KGgo", 0), 0u) << base64.substr(0, 16);  // "\x89PNG\r\n\x1a\n"
+    // PNG's IHDR: width and height big-endian at bytes 16-23; 300x150 fits 100x100 as 100x50.
+    // Bytes 15-23 ('R' of "IHDR", 00 00 00 64, 00 00 00 32) are base64 characters 20-31.
+    EXPECT_EQ(base64.substr(20, 12), "UgAAAGQAAAAy") << base64.substr(0, 40);
+}
+
+// RFC 4648 base64 back to bytes, to read a thumbnail (the library has the encoder only).
+std::string base64_decode(const std::string& text) {
+    const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string bytes;
+    uint32_t bits = 0;
+    int count = 0;
+    for (char c : text) {
+        const size_t v = alphabet.find(c);
+        if (v == std::string::npos) break;  // '=' padding
+        bits = (bits << 6) | static_cast<uint32_t>(v);
+        count += 6;
+        if (count >= 8) {
+            count -= 8;
+            bytes += static_cast<char>((bits >> count) & 0xFF);
+        }
+    }
+    return bytes;
+}
+
+TEST_F(ImageIo, HeatmapThumbnailKeepsALonePixel) {
+    // 300x150 black, one red pixel at (151, 76): shrunk 3 times to 100x50, a filter averages it
+    // away; keeping peaks makes thumbnail pixel (50, 25) (source pixels 150-152, 75-77) red.
+    Image heat = make_image(300, 150, std::vector<float>(300 * 150 * 4, 0.0f));
+    for (size_t i = 3; i < heat.rgba.size(); i += 4) heat.rgba[i] = 1.0f;
+    heat.rgba[(76 * 300 + 151) * 4] = 1.0f;
+    auto thumbnail = [&](bool keep_peaks) {
+        std::ofstream(path("thumb.png"), std::ios::binary) << base64_decode(png_thumbnail_base64(heat, 100, keep_peaks));
+        return read_image(path("thumb.png"));
+    };
+    const Image peaks = thumbnail(true);
+    ASSERT_EQ(peaks.width, 100u);
+    ASSERT_EQ(peaks.height, 50u);
+    expect_pixel(peaks, 50, 25, 1.0f, 0, 0, 1);
+    expect_pixel(peaks, 10, 10, 0.0f, 0, 0, 1);
+    const Image filtered = thumbnail(false);
+    EXPECT_LT(filtered.rgba[(25 * 100 + 50) * 4], 0.5f);
 }
 
 TEST_F(ImageIo, WriteImageThenReadImageRoundTripsAHeatmap) {

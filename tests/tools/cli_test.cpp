@@ -1,6 +1,9 @@
 // The sm2 command line, run as a user would: output, files written and exit status
 // (0 ok, 1 invalid input, 2 bad usage).
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <cmath>
+#include <filesystem>
 
 #include <cstdio>
 #include <cstdlib>
@@ -412,7 +415,7 @@ TEST(CliReplay, ClearAndPresentWriteTheClearedFrame) {
     EXPECT_NE(r.out.find("0 draws"), std::string::npos) << r.out;
     // The frame holds exactly the bytes written by hand, and not one more or less blue.
     EXPECT_EQ(sm2("diff " + dir + "/out/frame_0000.png " + dir + "/out/ref.png").status, 0);
-    EXPECT_EQ(sm2("diff " + dir + "/out/frame_0000.png " + dir + "/out/off_by_one.png").status, 1);
+    EXPECT_EQ(sm2("diff " + dir + "/out/frame_0000.png " + dir + "/out/off_by_one.png").status, 2);  // FAILURE
     // --quiet keeps only the summary
     auto q = sm2("replay " + stream + " -o " + dir + "/out2 --quiet --threads 3");
     EXPECT_EQ(q.status, 0) << q.err;
@@ -546,43 +549,322 @@ TEST(CliBench, ReportsRatesOfTheMedianRun) {
     EXPECT_NE(bad.err.find("<stdin>:2: D3DERR_INVALIDCALL: Present:"), std::string::npos) << bad.err;
 }
 
-TEST(CliDiff, IdenticalImagesAreStatus0) {
+// --compare against golden frames written by hand: a 2x2 clear to 0xFF336699, and the same with
+// blue one step up (0x9A) at pixel (1,1): an error of 1/255 in channel B there.
+TEST(CliReplay, CompareChecksEachFrameAgainstGoldenFrames) {
+    const std::string dir = make_dir("replay_compare");
+    write_file(dir + "/clear.sm2cs", "sm2cs 1\nCreateDevice 2 2 A8R8G8B8\nClear TARGET 0xFF336699 1 0\nPresent\nPresent\n");
+    write_file(dir + "/golden.sm2cs",
+               "sm2cs 1\n"
+               "CreateRenderTarget ref 2 2 A8R8G8B8\n"
+               "LockRect ref 0 u32[ 0xFF336699 0xFF336699 0xFF336699 0xFF336699 ]\n"
+               "SaveSurface ref \"exact/frame_0000.png\"\n"
+               "SaveSurface ref \"exact/frame_0001.png\"\n"
+               "SaveSurface ref \"off/frame_0000.png\"\n"
+               "LockRect ref 0 u32[ 0xFF336699 0xFF336699 0xFF336699 0xFF33669A ]\n"
+               "SaveSurface ref \"off/frame_0001.png\"\n"
+               "SaveSurface ref \"short/frame_0000.png\"\n"
+               "SaveSurface ref \"long/frame_0000.png\"\n"
+               "SaveSurface ref \"long/frame_0001.png\"\n"
+               "SaveSurface ref \"long/frame_0002.png\"\n");
+    for (const char* sub : {"exact", "off", "short", "long"}) std::filesystem::create_directories(dir + "/g/" + sub);
+    auto golden = sm2("replay " + dir + "/golden.sm2cs -o " + dir + "/g");
+    ASSERT_EQ(golden.status, 0) << golden.err;
+    const std::string replay = "replay " + dir + "/clear.sm2cs --quiet --overwrite -o " + dir + "/out --compare " + dir;
+    auto pass = sm2(replay + "/g/exact");
+    EXPECT_EQ(pass.status, 0) << pass.out << pass.err;
+    EXPECT_NE(pass.out.find("compare frame_0001.png: PASS, max error 0,"), std::string::npos) << pass.out;
+    EXPECT_NE(pass.out.find("2 frames compared with " + dir + "/g/exact: PASS\n"), std::string::npos) << pass.out;
+    auto fail = sm2(replay + "/g/off");
+    EXPECT_EQ(fail.status, 2) << fail.out << fail.err;
+    EXPECT_NE(fail.out.find("compare frame_0000.png: PASS"), std::string::npos) << fail.out;
+    EXPECT_NE(fail.out.find("compare frame_0001.png: FAILURE, max error 0.00392157 at (1, 1) B, PSNR "),
+              std::string::npos) << fail.out;  // 1/255
+    EXPECT_EQ(sm2(replay + "/g/off --fail 0.004").status, 0);
+    EXPECT_EQ(sm2(replay + "/g/off --fail 0.004 --warn 0.001").status, 1);
+    // a frame the golden folder lacks, and a golden frame the replay did not write
+    auto short_golden = sm2(replay + "/g/short");
+    EXPECT_EQ(short_golden.status, 4);
+    EXPECT_NE(short_golden.out.find("compare frame_0001.png: UNREADABLE: "), std::string::npos) << short_golden.out;
+    auto long_golden = sm2(replay + "/g/long");
+    EXPECT_EQ(long_golden.status, 4);
+    EXPECT_NE(long_golden.out.find("compare frame_0002.png: UNREADABLE: in " + dir + "/g/long, not written by the replay (2 frames)"),
+              std::string::npos) << long_golden.out;
+    EXPECT_EQ(sm2(replay + "/nonexistent").status, 4);
+    // a golden frame number past any integer is a frame the replay did not write
+    std::filesystem::copy(dir + "/g/exact", dir + "/g/huge");
+    write_file(dir + "/g/huge/frame_99999999999999999999999.png", "x");
+    auto huge = sm2(replay + "/g/huge");
+    EXPECT_EQ(huge.status, 4) << huge.out << huge.err;
+    EXPECT_NE(huge.out.find("compare frame_99999999999999999999999.png: UNREADABLE: in "), std::string::npos) << huge.out;
+}
+
+// A sample scene against its own earlier replay: every frame passes.
+TEST(CliReplay, CompareSampleSceneWithItsOwnFrames) {
+    const std::string dir = make_dir("replay_compare_scene");
+    const std::string scene = std::string(SM2_SOURCE_DIR) + "/samples/scenes/02_shared_edges_stencil.sm2cs";
+    ASSERT_EQ(sm2("replay " + scene + " -o " + dir + "/golden --quiet").status, 0);
+    auto r = sm2("replay " + scene + " -o " + dir + "/again --quiet --threads 1 --compare " + dir + "/golden");
+    EXPECT_EQ(r.status, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("frame_0000.png: PASS, max error 0, PSNR inf dB"), std::string::npos) << r.out;
+}
+
+// Three full-screen draws (a 4x4 target, two triangles covering each pixel once): a solid colour
+// (16 pixels rasterized, shaded, written), a shader whose texkill discards every pixel (16
+// killed, none written), and alpha test NEVER (16 shaded, none written). Calls 15, 17, 21 on
+// lines 31, 33, 37.
+const char* const kStatsScene =
+    "sm2cs 1\n"
+    "CreateDevice 4 4 A8R8G8B8\n"
+    "CreateVertexBuffer vb 48\n"
+    "Lock vb 0 f32[ -1 1 0.5   1 1 0.5   -1 -1 0.5   1 -1 0.5 ]\n"
+    "CreateVertexDeclaration decl { 0 0 FLOAT3 DEFAULT POSITION 0 }\n"
+    "CreateVertexShader vs asm<<END\n"
+    "vs_2_0\n"
+    "dcl_position v0\n"
+    "mov oPos, v0\n"
+    "END\n"
+    "CreatePixelShader solid asm<<END\n"
+    "ps_2_0\n"
+    "def c0, 1, 0, 0, 1\n"
+    "mov oC0, c0\n"
+    "END\n"
+    "CreatePixelShader kill asm<<END\n"
+    "ps_2_0\n"
+    "def c0, 1, 0, 0, 1\n"
+    "def c1, -1, -1, -1, -1\n"
+    "mov r0, c1\n"
+    "texkill r0\n"
+    "mov oC0, c0\n"
+    "END\n"
+    "SetVertexDeclaration decl\n"
+    "SetVertexShader vs\n"
+    "SetStreamSource 0 vb 0 12\n"
+    "SetRenderState CULLMODE NONE\n"
+    "Clear TARGET 0xFF000000 1 0\n"
+    "BeginScene\n"
+    "SetPixelShader solid\n"
+    "DrawPrimitive TRIANGLESTRIP 0 2\n"
+    "SetPixelShader kill\n"
+    "DrawPrimitive TRIANGLESTRIP 0 2\n"
+    "SetPixelShader solid\n"
+    "SetRenderState ALPHATESTENABLE TRUE\n"
+    "SetRenderState ALPHAFUNC NEVER\n"
+    "DrawPrimitive TRIANGLESTRIP 0 2\n"
+    "EndScene\n"
+    "Present\n";
+
+TEST(CliReplay, StatsCountEachDrawsPixels) {
+    const std::string dir = make_dir("replay_stats");
+    write_file(dir + "/s.sm2cs", kStatsScene);
+    auto r = sm2("replay " + dir + "/s.sm2cs -o " + dir + "/out --quiet --stats json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["calls"], 23);
+    ASSERT_EQ(j["draws"].size(), 3u);
+    const struct {
+        int call, line, killed, written;
+    } expected[] = {{15, 31, 0, 16}, {17, 33, 16, 0}, {21, 37, 0, 0}};
+    for (size_t i = 0; i < 3; ++i) {
+        const auto& d = j["draws"][i];
+        EXPECT_EQ(d["call"], expected[i].call) << i;
+        EXPECT_EQ(d["line"], expected[i].line) << i;
+        EXPECT_EQ(d["name"], "DrawPrimitive") << i;
+        EXPECT_EQ(d["frame"], 0) << i;
+        EXPECT_EQ(d["pixels_rasterized"], 16) << i;
+        EXPECT_EQ(d["pixels_shaded"], 16) << i;
+        EXPECT_EQ(d["pixels_killed"], expected[i].killed) << i;
+        EXPECT_EQ(d["pixels_written"], expected[i].written) << i;
+        EXPECT_EQ(d["vertices_shaded"], 4) << i;
+        EXPECT_EQ(d["primitives"], 2) << i;
+        EXPECT_GE(d["seconds"].get<double>(), 0.0) << i;
+    }
+    EXPECT_EQ(j["total"]["pixels_written"], 16);
+    EXPECT_EQ(j["total"]["pixels_killed"], 16);
+    auto table = sm2("replay " + dir + "/s.sm2cs -o " + dir + "/out --overwrite --quiet --stats table");
+    ASSERT_EQ(table.status, 0) << table.err;
+    EXPECT_NE(table.out.find("     17      33      0          16          16          16           0         4          2"),
+              std::string::npos) << table.out;
+    EXPECT_NE(table.out.find("  total                         48          48          16          16        12          6"),
+              std::string::npos) << table.out;
+    EXPECT_NE(table.out.find("1 frames, 23 calls"), std::string::npos) << table.out;
+    EXPECT_EQ(sm2("replay " + dir + "/s.sm2cs -o " + dir + "/out --overwrite --stats csv").status, 2);
+}
+
+TEST(CliBench, JsonReport) {
+    const std::string dir = make_dir("bench_json");
+    write_file(dir + "/b.sm2cs",
+               "sm2cs 1\nCreateDevice 4 4 A8R8G8B8\nClear TARGET 0xFF000000 1 0\nPresent\nPresent\nPresent\n");
+    auto r = sm2("bench " + dir + "/b.sm2cs --repeat 3 --threads 2 --json --engine interpreter");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["calls"], 5);
+    EXPECT_EQ(j["frames"], 3);
+    EXPECT_EQ(j["draws"], 0);
+    EXPECT_EQ(j["runs"], 3);
+    EXPECT_EQ(j["threads"], 2);
+    EXPECT_EQ(j["engine"], "interpreter");
+    ASSERT_EQ(j["run_seconds"].size(), 3u);
+    EXPECT_GT(j["median_seconds"].get<double>(), 0.0);
+    EXPECT_LE(j["best_seconds"].get<double>(), j["median_seconds"].get<double>());
+    EXPECT_NEAR(j["frames_per_second"].get<double>(), 3.0 / j["median_seconds"].get<double>(), 1e-6);
+    EXPECT_EQ(j["refused_calls"], 0);
+}
+
+TEST(CliDiff, IdenticalImagesPass) {
     const std::string dir = make_images();
     auto r = sm2("diff " + dir + "/a.png " + dir + "/a.png");
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("size: 2x2"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("max abs error: 0\n"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("worst pixel"), std::string::npos) << r.out;  // none
     EXPECT_NE(r.out.find("PSNR: inf dB"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("differing pixels: 0 of 4"), std::string::npos) << r.out;
+    EXPECT_TRUE(r.out.ends_with("\nPASS\n")) << r.out;
 }
 
-TEST(CliDiff, DifferingImagesAreStatus1WithMetricsAndHeatmap) {
+TEST(CliDiff, DifferingImagesFailWithMetricsAndHeatmap) {
     const std::string dir = make_images();
     auto r = sm2("diff " + dir + "/a.png " + dir + "/b.png --heatmap " + dir + "/heat.png");
-    EXPECT_EQ(r.status, 1) << r.err;
-    // one channel of 16 differs by 128/255, read back as the float 0.50196081; mean
-    // 0.50196081 / 16 = 0.03137255 (0.0313726 in 6 digits); PSNR = 10 log10(16 / (128/255)^2) = 18.0278 dB
+    EXPECT_EQ(r.status, 2) << r.err;  // FAILURE
+    // one channel of 16 (red of pixel (1,1)) differs by 128/255, read back as the float
+    // 0.50196081; mean 0.50196081 / 16 = 0.03137255 (0.0313726 in 6 digits);
+    // RMS = sqrt((128/255)^2 / 16) = 0.50196081 / 4 = 0.1254902; PSNR = 20 log10(1 / RMS) = 18.0278 dB
     EXPECT_NE(r.out.find("max abs error: 0.501961\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("worst pixel: (1, 1) channel R\n"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("mean abs error: 0.0313726\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("RMS error: 0.12549\n"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("PSNR: 18.0278 dB"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("differing pixels: 1 of 4 (tolerance 0)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("warning pixels: 1 of 4 (25%) over 0\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("differing pixels: 1 of 4 (25%) over 0\n"), std::string::npos) << r.out;
+    EXPECT_TRUE(r.out.ends_with("\nFAILURE\n")) << r.out;
     EXPECT_TRUE(exists(dir + "/heat.png"));
     // The heat map (worst pixel full red by default) is itself an image sm2 diff reads.
     auto h = sm2("diff " + dir + "/heat.png " + dir + "/a.png");
     EXPECT_NE(h.out.find("max abs error: 1\n"), std::string::npos) << h.out;  // red channel 1 against 0
+    EXPECT_NE(h.out.find("worst pixel: (1, 1) channel R\n"), std::string::npos) << h.out;
     EXPECT_NE(h.out.find("differing pixels: 1 of 4"), std::string::npos) << h.out;
-    // A tolerance above the error passes.
-    EXPECT_EQ(sm2("diff " + dir + "/a.png " + dir + "/b.png --tolerance 0.51").status, 0);
+    // No heat map unless asked.
+    EXPECT_EQ(sm2("diff " + dir + "/a.png " + dir + "/b.png").status, 2);
+    EXPECT_FALSE(exists(dir + "/diff.png"));
 }
 
-TEST(CliDiff, SizeMismatchAndMissingFilesAreStatus1) {
+// idiff's thresholds on the one differing channel (0.50196 = 128/255) of 4 pixels.
+TEST(CliDiff, ThresholdsGiveIdiffsVerdicts) {
+    const std::string dir = make_images();
+    const std::string pair = "diff " + dir + "/a.png " + dir + "/b.png ";
+    // Over the warn threshold only: WARNING.
+    auto warn = sm2(pair + "--fail 0.51 --warn 0.1");
+    EXPECT_EQ(warn.status, 1) << warn.out;
+    EXPECT_TRUE(warn.out.ends_with("\nWARNING\n")) << warn.out;
+    EXPECT_NE(warn.out.find("differing pixels: 0 of 4 (0%) over 0.51\n"), std::string::npos) << warn.out;
+    // Under both: PASS (--tolerance, the older name of --fail, sets --warn too).
+    EXPECT_EQ(sm2(pair + "--fail 0.51").status, 0);
+    EXPECT_EQ(sm2(pair + "--tolerance 0.51").status, 0);
+    // An error equal to the threshold is allowed: 128/255 read back is 0.501960813999176.
+    EXPECT_EQ(sm2(pair + "--fail 0.50196082").status, 0);
+    // 1 failing pixel of 4 is 25%: --failpercent 25 allows it (a WARNING), 24 does not.
+    EXPECT_EQ(sm2(pair + "--failpercent 25").status, 1);
+    EXPECT_EQ(sm2(pair + "--failpercent 24").status, 2);
+    // --hardfail fails whatever the percentage allows.
+    EXPECT_EQ(sm2(pair + "--failpercent 50 --hardfail 0.5").status, 2);
+    EXPECT_EQ(sm2(pair + "--failpercent 50 --hardfail 0.51").status, 1);
+    // --fail and --tolerance are one setting.
+    EXPECT_EQ(sm2(pair + "--fail 0.1 --tolerance 0.2").status, 2);
+    EXPECT_EQ(sm2(pair + "--failpercent 101").status, 2);
+}
+
+TEST(CliDiff, JsonReport) {
+    const std::string dir = make_images();
+    auto r = sm2("diff " + dir + "/a.png " + dir + "/b.png --json --fail 0.6 --warn 0.5");
+    EXPECT_EQ(r.status, 1) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["a"], dir + "/a.png");
+    EXPECT_EQ(j["verdict"], "WARNING");
+    EXPECT_EQ(j["status"], 1);
+    EXPECT_EQ(j["width"], 2);
+    EXPECT_NEAR(j["max_error"].get<double>(), 128.0 / 255.0, 1e-7);
+    EXPECT_EQ(j["worst_pixel"]["x"], 1);
+    EXPECT_EQ(j["worst_pixel"]["y"], 1);
+    EXPECT_EQ(j["worst_pixel"]["channel"], "R");
+    EXPECT_NEAR(j["rms_error"].get<double>(), 128.0 / 255.0 / 4.0, 1e-7);
+    EXPECT_NEAR(j["psnr_db"].get<double>(), 20.0 * std::log10(4.0 * 255.0 / 128.0), 1e-5);
+    EXPECT_EQ(j["warning_pixels"], 1);
+    EXPECT_EQ(j["failing_pixels"], 0);
+    auto same = nlohmann::json::parse(sm2("diff " + dir + "/a.png " + dir + "/a.png --json").out);
+    EXPECT_TRUE(same["psnr_db"].is_null());  // infinite
+    EXPECT_EQ(same["verdict"], "PASS");
+}
+
+TEST(CliDiff, SizeMismatchIs3AndUnreadableFilesAre4) {
     const std::string dir = make_images();
     auto r = sm2("diff " + dir + "/a.png " + dir + "/c.png");
-    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.status, 3);
     EXPECT_NE(r.err.find("sm2 diff: image sizes differ: 2x2 and 1x1"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "SIZE MISMATCH\n");
     auto m = sm2("diff " + dir + "/a.png " + dir + "/missing.png");
-    EXPECT_EQ(m.status, 1);
+    EXPECT_EQ(m.status, 4);
     EXPECT_NE(m.err.find("missing.png"), std::string::npos) << m.err;
+    write_file(dir + "/text.png", "not a PNG");
+    EXPECT_EQ(sm2("diff " + dir + "/text.png " + dir + "/a.png").status, 4);
+    EXPECT_EQ(sm2("diff " + dir + " " + dir + "/a.png").status, 4);  // a folder against a file
+}
+
+// Folders are matched by name: a.png equal, b.png failing (c.png against the 2x2 a.png: sizes),
+// d.png only on one side.
+TEST(CliDiff, FoldersMatchedByNameWithJsonAndHtml) {
+    const std::string dir = make_images();
+    const std::string left = make_dir("diff_left"), right = make_dir("diff_right");
+    std::filesystem::copy_file(dir + "/a.png", left + "/a.png");
+    std::filesystem::copy_file(dir + "/a.png", right + "/a.png");
+    std::filesystem::copy_file(dir + "/a.png", left + "/b.png");
+    std::filesystem::copy_file(dir + "/b.png", right + "/b.png");
+    write_file(left + "/notes.txt", "not an image: ignored");
+    auto r = sm2("diff " + left + " " + right + " --html " + dir + "/report.html");
+    EXPECT_EQ(r.status, 2) << r.out << r.err;
+    EXPECT_NE(r.out.find("a.png: PASS, max error 0, PSNR inf dB, 0 of 4 pixels failing\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("b.png: FAILURE, max error 0.501961 at (1, 1) R, PSNR 18.0278 dB, 1 of 4 pixels failing\n"),
+              std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("2 images: 1 pass, 0 warning, 1 failure, 0 size mismatch, 0 unreadable or missing\nFAILURE\n"),
+              std::string::npos) << r.out;
+    const std::string html = slurp(dir + "/report.html");
+    EXPECT_NE(html.find("<td>b.png</td><td class=\"FAILURE\">FAILURE</td>"), std::string::npos) << html;
+    // thumbnails of A and B for both rows, a heat map for the differing one: 5 PNGs
+    size_t images = 0;
+    for (size_t at = html.find("data:image/png;base64,iVBORw0KGgo"); at != std::string::npos;
+         at = html.find("data:image/png;base64,iVBORw0KGgo", at + 1))
+        ++images;
+    EXPECT_EQ(images, 5u) << html;
+
+    std::filesystem::copy_file(dir + "/c.png", left + "/c.png");
+    std::filesystem::copy_file(dir + "/a.png", right + "/c.png");
+    std::filesystem::copy_file(dir + "/a.png", right + "/d.png");
+    auto j = sm2("diff " + left + " " + right + " --json");
+    EXPECT_EQ(j.status, 4);  // the worst: d.png is missing on the left
+    const auto json = nlohmann::json::parse(j.out);
+    ASSERT_EQ(json["images"].size(), 4u);
+    EXPECT_EQ(json["images"][2]["name"], "c.png");
+    EXPECT_EQ(json["images"][2]["verdict"], "SIZE MISMATCH");
+    EXPECT_EQ(json["images"][2]["status"], 3);
+    EXPECT_EQ(json["images"][3]["error"], "only in " + right);
+    EXPECT_EQ(json["verdict"], "UNREADABLE");
+    // a heat map names one image: refused for folders
+    EXPECT_EQ(sm2("diff " + left + " " + right + " --heatmap " + dir + "/h.png").status, 2);
+    EXPECT_FALSE(exists(dir + "/h.png"));
+}
+
+// File names need not be UTF-8; JSON text must be: the byte 0xFF becomes U+FFFD.
+TEST(CliDiff, JsonOfFoldersWithNamesThatAreNotUtf8) {
+    const std::string dir = make_images();
+    const std::string left = make_dir("diff_utf_left"), right = make_dir("diff_utf_right");
+    std::filesystem::copy_file(dir + "/a.png", left + "/bad\xff.png");
+    std::filesystem::copy_file(dir + "/a.png", right + "/bad\xff.png");
+    auto r = sm2("diff " + left + " " + right + " --json");
+    EXPECT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j["images"].size(), 1u);
+    EXPECT_EQ(j["images"][0]["name"], "bad\xef\xbf\xbd.png");
+    EXPECT_EQ(j["images"][0]["verdict"], "PASS");
 }
 
 TEST(CliDiff, StdinAndNanTolerance) {
@@ -592,13 +874,14 @@ TEST(CliDiff, StdinAndNanTolerance) {
     EXPECT_EQ(same.status, 0) << same.err;
     EXPECT_NE(same.out.find("differing pixels: 0 of 4"), std::string::npos) << same.out;
     auto differs = sm2("diff " + dir + "/a.png -", slurp(dir + "/b.png"));
-    EXPECT_EQ(differs.status, 1) << differs.err;
+    EXPECT_EQ(differs.status, 2) << differs.err;
     EXPECT_NE(differs.out.find("differing pixels: 1 of 4"), std::string::npos) << differs.out;
     EXPECT_EQ(sm2("diff - -", slurp(dir + "/b.png")).status, 2);
     // NaN would make every comparison false, so every pixel "equal": refused as bad usage
     auto nan = sm2("diff " + dir + "/a.png " + dir + "/b.png --tolerance nan");
     EXPECT_EQ(nan.status, 2);
     EXPECT_NE(nan.err.find("'nan' is not a number"), std::string::npos) << nan.err;
+    EXPECT_EQ(sm2("diff " + dir + "/a.png " + dir + "/b.png --fail nan").status, 2);
     EXPECT_EQ(sm2("diff " + dir + "/a.png " + dir + "/b.png --heatmap-scale nan").status, 2);
 }
 
@@ -632,12 +915,24 @@ TEST(CliBadFiles, DirectoriesDevicesAndFifosAreRefused) {
         {"run " + texture_shader + " --texture s0=/dev/zero", "/dev/zero: is a character device"},
         {"run " + texture_shader + " --texture s0=" + fifo, fifo + ": is a FIFO"},
         {"run " + texture_shader + " --texture s0=" + dir, dir + ": is a directory"},
-        {"diff " + dir + " " + fifo, dir + ": is a directory"},
-        {"diff /dev/zero " + dir, "/dev/zero: is a character device"},
     };
     for (const Case& c : cases) {
         auto r = sm2(c.args);
         EXPECT_EQ(r.status, 1) << c.args << ": " << r.err;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
+    }
+    // sm2 diff: a file it cannot read is status 4 (idiff's); a folder goes with a folder only.
+    const std::string png = dir + "/x.png";
+    write_file(png, "not a PNG");
+    const Case diff_cases[] = {
+        {"diff " + dir + " " + fifo, dir + " is a folder and " + fifo + " is not"},
+        {"diff /dev/zero " + dir, dir + " is a folder and /dev/zero is not"},
+        {"diff /dev/zero " + png, "/dev/zero: is a character device"},
+        {"diff " + fifo + " " + png, fifo + ": is a FIFO"},
+    };
+    for (const Case& c : diff_cases) {
+        auto r = sm2(c.args);
+        EXPECT_EQ(r.status, 4) << c.args << ": " << r.err;
         EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
     }
     // stdin that never ends (/dev/zero) stops at the input size limit

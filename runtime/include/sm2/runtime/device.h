@@ -117,6 +117,10 @@ struct DeviceOptions {
 struct DrawStatistics {
     uint64_t draws = 0, vertices_shaded = 0, primitives = 0, pixels_shaded = 0;
     uint64_t pipelines_built = 0;
+    // Pixels covered by a primitive (inside viewport and scissor), discarded by texkill, and
+    // that wrote a colour (past texkill, alpha, depth and stencil tests). pixels_shaded counts
+    // the ones the pixel shader ran for (after an early depth/stencil test, when one runs).
+    uint64_t pixels_rasterized = 0, pixels_killed = 0, pixels_written = 0;
     // Wall time per stage, summed over draws (seconds): building pipelines (lowering), vertex
     // fetch and shading, primitive assembly + clipping + setup + binning, and the tile work
     // (rasterization, interpolation, pixel shading, output merger; all threads together).

@@ -64,6 +64,20 @@ struct ReplayOptions {
     ShaderAssembler assembler;          // empty: asm heredocs are refused
     // Called after each statement with (statements done, total) during replay(); may be empty.
     std::function<void(size_t, size_t)> progress;
+    // replay() records each draw's work in ReplayResult::draws (sm2 replay --stats); off, it
+    // costs one test per call.
+    bool per_draw_statistics = false;
+};
+
+// One draw call's work (ReplayOptions::per_draw_statistics).
+struct DrawRecord {
+    size_t call = 0;     // 1-based, counting calls as ReplayResult::calls does
+    uint32_t line = 0;   // the statement's line in the text form (0: binary)
+    size_t record = 0;   // 1-based statement number
+    std::string name;    // "DrawIndexedPrimitive"
+    size_t frame = 0;    // the frame it draws into (Presents before it)
+    double seconds = 0;  // the call's wall time
+    DrawStatistics statistics{};
 };
 
 struct ReplayResult {
@@ -73,6 +87,7 @@ struct ReplayResult {
     size_t refused = 0;              // calls that became diagnostics
     double seconds = 0;              // the whole replay
     DrawStatistics statistics{};     // what the replay's draws did (the device's counters' growth)
+    std::vector<DrawRecord> draws;   // ReplayOptions::per_draw_statistics: each draw, in order
     [[nodiscard]] bool ok() const { return diagnostics.empty(); }
 };
 
