@@ -911,6 +911,12 @@ SM2_AVX512 __attribute__((always_inline)) inline BlockQuad block_fetch(const Blo
     return q;
 }
 
+// Tap `tap`'s word holding a channel (`high`: the second word of 8-byte texels), chosen by value
+// so that the taps stay in registers.
+SM2_AVX512 inline __m512i tap_word(const BlockQuad& q, unsigned tap, unsigned high) {
+    return high != 0 ? q.t[tap][1] : q.t[tap][0];
+}
+
 // filter_level() on each lane's level `level` (POINT or LINEAR per lane), 2D or volume.
 SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, const BlockFormat& format, __m512i level,
                                    const BlockLanes& in, __mmask16 linear, __m512 (&out)[4]) {
@@ -956,11 +962,11 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
             const __m512 w00 = _mm512_mul_ps(_mm512_mul_ps(bx, by), wz), w10 = _mm512_mul_ps(_mm512_mul_ps(tx.a, by), wz);
             const __m512 w01 = _mm512_mul_ps(_mm512_mul_ps(bx, ty.a), wz), w11 = _mm512_mul_ps(_mm512_mul_ps(tx.a, ty.a), wz);
             for (unsigned k = 0; k < 4; ++k) {
-                const __m512 c00 = block_tap(c, q.t[0][format[k].high], format[k], k, o00);
+                const __m512 c00 = block_tap(c, tap_word(q, 0, format[k].high), format[k], k, o00);
                 if (p == 0) point[k] = c00;
-                __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_tap(c, q.t[1][format[k].high], format[k], k, o10), w10));
-                r = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, q.t[2][format[k].high], format[k], k, o01), w01));
-                sum[p][k] = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, q.t[3][format[k].high], format[k], k, o11), w11));
+                __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_tap(c, tap_word(q, 1, format[k].high), format[k], k, o10), w10));
+                r = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, tap_word(q, 2, format[k].high), format[k], k, o01), w01));
+                sum[p][k] = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, tap_word(q, 3, format[k].high), format[k], k, o11), w11));
             }
         }
         for (unsigned k = 0; k < 4; ++k) out[k] = _mm512_mask_mov_ps(point[k], linear, _mm512_add_ps(sum[0][k], sum[1][k]));
@@ -985,8 +991,8 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
         const bool exact = c.fixed && ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 0xFFu;
         __m512 exact_sum = _mm512_setzero_ps();
         if (exact) {
-            const __m512 top = _mm512_fmadd_ps(block_field(q.t[1][ch.high], ch), ax, _mm512_mul_ps(block_field(q.t[0][ch.high], ch), bxi));
-            const __m512 bottom = _mm512_fmadd_ps(block_field(q.t[3][ch.high], ch), ax, _mm512_mul_ps(block_field(q.t[2][ch.high], ch), bxi));
+            const __m512 top = _mm512_fmadd_ps(block_field(tap_word(q, 1, ch.high), ch), ax, _mm512_mul_ps(block_field(tap_word(q, 0, ch.high), ch), bxi));
+            const __m512 bottom = _mm512_fmadd_ps(block_field(tap_word(q, 3, ch.high), ch), ax, _mm512_mul_ps(block_field(tap_word(q, 2, ch.high), ch), bxi));
             const __m512 sum = _mm512_fmadd_ps(bottom, ay, _mm512_mul_ps(top, byi));
             exact_sum = _mm512_mul_ps(unorm8::quotient(sum, ch.max), _mm512_set1_ps(1.0f / 65536.0f));
             if (!bordered) {
@@ -994,10 +1000,10 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
                 continue;
             }
         }
-        const __m512 c00 = block_tap(c, q.t[0][ch.high], ch, k, o00);
-        __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_tap(c, q.t[1][ch.high], ch, k, o10), w10));
-        r = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, q.t[2][ch.high], ch, k, o01), w01));
-        r = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, q.t[3][ch.high], ch, k, o11), w11));
+        const __m512 c00 = block_tap(c, tap_word(q, 0, ch.high), ch, k, o00);
+        __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_tap(c, tap_word(q, 1, ch.high), ch, k, o10), w10));
+        r = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, tap_word(q, 2, ch.high), ch, k, o01), w01));
+        r = _mm512_add_ps(r, _mm512_mul_ps(block_tap(c, tap_word(q, 3, ch.high), ch, k, o11), w11));
         // POINT lanes read their texel as it is (filter_level() fetches it): the weighted sum
         // equals it for finite non-negative values, not for a float texel beside an infinity.
         r = _mm512_mask_mov_ps(c00, linear, r);
