@@ -194,16 +194,14 @@ using BlockFormat = std::array<BlockChannel, 4>;
 // stage's context (built once per prepare(), not per lookup).
 struct TextureSampler::BlockLevels {
     static constexpr unsigned kMax = 16;
-    alignas(64) std::array<int32_t, kMax> width{}, height{}, depth{}, row{}, slice{};
-    alignas(64) std::array<const std::byte*, kMax> base{};
-    // Where every level lies within 2^31 bytes of `anchor`: each level's start as a 32-bit
-    // offset from it, so a gather takes 16 32-bit offsets instead of two halves of 64-bit
-    // addresses (offsets32 false: the 64-bit gathers). size: each level's bytes.
-    alignas(64) std::array<int32_t, kMax> offset{}, size{};
-    // Cube maps: offset and base of face f's level l at f * kMax + l (the faces' levels measure
-    // the same, so the other tables hold face 0's).
-    alignas(64) std::array<int32_t, kMax * 6> face_offset{};
-    alignas(64) std::array<const std::byte*, kMax * 6> face_base{};
+    // The faces' levels measure the same: these tables hold face 0's. size: each level's bytes.
+    alignas(64) std::array<int32_t, kMax> width{}, height{}, depth{}, row{}, slice{}, size{};
+    // Where face f's level l starts (f * kMax + l; 2D and volume textures: face 0, the first kMax
+    // entries): its address, and where every level lies within 2^31 bytes of `anchor`, its
+    // 32-bit offset from it, so a gather takes 16 32-bit offsets instead of two halves of 64-bit
+    // addresses (offsets32 false: the 64-bit gathers).
+    alignas(64) std::array<int32_t, kMax * 6> offset{};
+    alignas(64) std::array<const std::byte*, kMax * 6> base{};
     const std::byte* anchor = nullptr;
     bool offsets32 = false;
     unsigned texel_bytes = 4;  // 1, 2 (narrow texels), 4 or 8 (two words)
@@ -669,7 +667,7 @@ bool block_supported(const Context& c, BlockLevels& levels) {
         levels.depth[l] = static_cast<int32_t>(s.depth());
         levels.row[l] = static_cast<int32_t>(s.row_pitch());
         levels.slice[l] = static_cast<int32_t>(s.slice_pitch());
-        levels.base[l] = s.bytes().data();
+        levels.size[l] = static_cast<int32_t>(s.bytes().size());
         all_pow2 = all_pow2 && std::has_single_bit(s.width()) && std::has_single_bit(s.height()) &&
                    (!c.volume || std::has_single_bit(s.depth()));
     }
@@ -679,7 +677,7 @@ bool block_supported(const Context& c, BlockLevels& levels) {
         levels.depth[l] = levels.depth[count - 1];
         levels.row[l] = levels.row[count - 1];
         levels.slice[l] = levels.slice[count - 1];
-        levels.base[l] = levels.base[count - 1];
+        levels.size[l] = levels.size[count - 1];
     }
     // 32-bit offsets when every byte of every level (of every face) lies within [anchor, anchor + 2^31).
     uintptr_t low = UINTPTR_MAX, high = 0;
@@ -693,16 +691,13 @@ bool block_supported(const Context& c, BlockLevels& levels) {
         }
     levels.offsets32 = high - low < (uintptr_t{1} << 31);
     levels.anchor = reinterpret_cast<const std::byte*>(low);
-    for (unsigned l = 0; l < BlockLevels::kMax; ++l) {
-        levels.offset[l] = levels.offsets32 ? static_cast<int32_t>(reinterpret_cast<uintptr_t>(levels.base[l]) - low) : 0;
-        levels.size[l] = static_cast<int32_t>(c.texture->surface(std::min(l, count - 1)).bytes().size());
-        for (unsigned f = 0; f < faces; ++f) {
+    for (unsigned f = 0; f < faces; ++f)
+        for (unsigned l = 0; l < BlockLevels::kMax; ++l) {  // levels past the last repeat it
             const std::byte* base = c.texture->surface(std::min(l, count - 1), f).bytes().data();
-            levels.face_base[f * BlockLevels::kMax + l] = base;
-            levels.face_offset[f * BlockLevels::kMax + l] =
+            levels.base[f * BlockLevels::kMax + l] = base;
+            levels.offset[f * BlockLevels::kMax + l] =
                 levels.offsets32 ? static_cast<int32_t>(reinterpret_cast<uintptr_t>(base) - low) : 0;
         }
-    }
     levels.context = c;
     return block_address_supported(c.address[0], all_pow2) && block_address_supported(c.address[1], all_pow2) &&
            (!c.volume || block_address_supported(c.address[2], all_pow2));
@@ -936,9 +931,9 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
         const __m512i at = _mm512_add_epi32(_mm512_mullo_epi32(_mm512_load_si512(in.face.data()),
                                                                _mm512_set1_epi32(static_cast<int32_t>(BlockLevels::kMax))),
                                             level);
-        address.start = _mm512_i32gather_epi32(at, levels.face_offset.data(), 4);
-        address.base_lo = _mm512_i32gather_epi64(_mm512_castsi512_si256(at), levels.face_base.data(), 8);
-        address.base_hi = _mm512_i32gather_epi64(_mm512_extracti64x4_epi64(at, 1), levels.face_base.data(), 8);
+        address.start = _mm512_i32gather_epi32(at, levels.offset.data(), 4);
+        address.base_lo = _mm512_i32gather_epi64(_mm512_castsi512_si256(at), levels.base.data(), 8);
+        address.base_hi = _mm512_i32gather_epi64(_mm512_extracti64x4_epi64(at, 1), levels.base.data(), 8);
     }
     const BlockTaps tx = block_taps(c, _mm512_load_ps(in.u.data()), w, c.address[0], linear);
     const BlockTaps ty = block_taps(c, _mm512_load_ps(in.v.data()), h, c.address[1], linear);
