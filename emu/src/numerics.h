@@ -4,6 +4,7 @@
 // into the interpreter's lane loops.
 #pragma once
 
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -124,8 +125,49 @@ inline float pow_float(float base, float exponent) {
     const float inf = std::numeric_limits<float>::infinity();
     result = a == 0.0f ? (exponent > 0.0f ? 0.0f : inf) : result;
     result = a == inf ? (exponent > 0.0f ? inf : 0.0f) : result;
-    result = (a != a) | (exponent != exponent) ? std::numeric_limits<float>::quiet_NaN() : result;
-    return (exponent == 0.0f) | (a == 1.0f) ? 1.0f : result;
+    result = ((a != a) | (exponent != exponent)) ? std::numeric_limits<float>::quiet_NaN() : result;
+    return ((exponent == 0.0f) | (a == 1.0f)) ? 1.0f : result;
+}
+
+// pow_float() for a batch whose exponent is one integer n in [1, 256] on every lane (a constant,
+// as specular exponents are): |base|^n as a product of doubles by repeated squaring. A product
+// of n factors carries a relative error of at most (n - 1) 2^-53 / (1 - (n - 1) 2^-53) < 2^-45
+// however it is grouped, so where r (1 - 2^-44) and r (1 + 2^-44) round to the same float, the
+// exact power rounds to it too (rounding is monotonic): the correctly rounded result, which is
+// what pow_float() gives. Returns false, with `out` unspecified, when a lane's rounding is not
+// certain that way (an exact power on a rounding tie, or NaN): the caller then runs pow_float().
+template <size_t N>
+inline bool pow_float_integer(const std::array<float, N>& base, unsigned n, std::array<float, N>& out) {
+    std::array<double, N> product, square;
+    for (size_t l = 0; l < N; ++l) {
+        square[l] = std::fabs(static_cast<double>(base[l]));
+        product[l] = 1.0;
+    }
+    for (unsigned m = n;;) {
+        if (m & 1u)
+            for (size_t l = 0; l < N; ++l) product[l] *= square[l];
+        m >>= 1;
+        if (m == 0) break;
+        for (size_t l = 0; l < N; ++l) square[l] *= square[l];
+    }
+    bool certain = true;
+    for (size_t l = 0; l < N; ++l) {
+        const float low = static_cast<float>(product[l] * (1.0 - 0x1p-44));
+        const float high = static_cast<float>(product[l] * (1.0 + 0x1p-44));
+        certain &= low == high;
+        out[l] = low;
+    }
+    return certain;
+}
+
+// The exponent n of pow_float_integer() when every lane holds the same integer in [1, 256];
+// 0 otherwise.
+template <size_t N>
+inline unsigned uniform_integer_exponent(const std::array<float, N>& exponent) {
+    const float first = exponent[0];
+    bool uniform = true;
+    for (size_t l = 0; l < N; ++l) uniform &= exponent[l] == first;
+    return uniform && first >= 1.0f && first <= 256.0f && first == std::trunc(first) ? static_cast<unsigned>(first) : 0u;
 }
 
 template <typename Real>

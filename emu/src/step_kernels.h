@@ -229,6 +229,18 @@ inline void compute(Vector<Real>& result, const Vector<Real>& a, const Vector<Re
     } else if constexpr (op == Opcode::Log || op == Opcode::LogP) {
         scalar(result, mask, [&](unsigned l) { return log2<Real, fast>(a[0][l]); });
     } else if constexpr (op == Opcode::Pow) {
+        if constexpr (std::is_same_v<Real, float> && !fast) {
+            // A constant integer exponent: the same correctly rounded result as pow_float() by
+            // repeated squaring, a few multiplications instead of its two series.
+            if (const unsigned n = num::uniform_integer_exponent(b[0]); n != 0) {
+                Lanes<Real> value;
+                if (num::pow_float_integer(a[0], n, value)) {
+                    for (unsigned c = 0; c < 4; ++c)
+                        if (has(mask, c)) result[c] = value;
+                    return;
+                }
+            }
+        }
         scalar(result, mask, [&](unsigned l) { return pow<Real, fast>(a[0][l], b[0][l]); });
     } else if constexpr (op == Opcode::Lit) {
         for (unsigned l = 0; l < N; ++l) {

@@ -3,6 +3,7 @@
 // the numeric policy. The measured maxima are printed (docs/numerics.md quotes them).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -171,6 +172,81 @@ TEST(ExactTranscendentals, PowIsCorrectlyRoundedOnASample) {
     std::printf("exact pow: %zu results in the normal range, max error %.6f ulp\n", checked, worst);
     EXPECT_GT(checked, 200000u);
     EXPECT_LE(worst, 0.5 + 0x1p-40);
+}
+
+// A batch whose exponent is one integer n in [1, 256] (a constant, as specular exponents are)
+// takes repeated squaring in exact mode (numerics.h pow_float_integer). Its results must be
+// bit for bit those of the general evaluation, which a batch of mixed exponents takes: the same
+// (base, n) pairs are run once grouped by n and once shuffled across batches. Both must also be
+// correctly rounded against long double powl.
+TEST(ExactTranscendentals, PowWithOneIntegerExponentPerBatchMatchesTheGeneralPath) {
+    constexpr unsigned kBatches = 256 * 40;
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<float> unit(0.0f, 2.0f), scale(-40.0f, 40.0f);
+    std::vector<float> bases(kBatches * emu::kBatchLanes), exponents(bases.size());
+    for (size_t k = 0; k < bases.size(); ++k) {
+        const size_t batch = k / emu::kBatchLanes;
+        // Half near 1 (where specular powers live), half spread over many binades, signs mixed.
+        const float magnitude = batch % 2 == 0 ? unit(rng) : std::exp2(scale(rng));
+        bases[k] = k % 3 == 0 ? -magnitude : magnitude;
+        exponents[k] = static_cast<float>(1 + batch % 256);
+    }
+    std::vector<size_t> order(bases.size());
+    for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::shuffle(order.begin(), order.end(), rng);
+    std::vector<float> mixed_bases(bases.size()), mixed_exponents(bases.size());
+    for (size_t k = 0; k < order.size(); ++k) {
+        mixed_bases[k] = bases[order[k]];
+        mixed_exponents[k] = exponents[order[k]];
+    }
+    const auto grouped = evaluate(Opcode::Pow, bases, exponents, emu::Transcendentals::Exact);
+    const auto mixed = evaluate(Opcode::Pow, mixed_bases, mixed_exponents, emu::Transcendentals::Exact);
+    size_t differ = 0, checked = 0;
+    double worst = 0;
+    for (size_t k = 0; k < order.size(); ++k) {
+        const size_t at = order[k];
+        differ += same_bits(mixed[k], grouped[at]) ? 0u : 1u;
+        const long double reference = powl(fabsl(static_cast<long double>(bases[at])), static_cast<long double>(exponents[at]));
+        if (!(reference >= 0x1p-126L && reference < 0x1p127L)) continue;
+        const long double ulp = ldexpl(1.0L, ilogbl(reference) - 23);
+        worst = std::max(worst, static_cast<double>(fabsl(static_cast<long double>(grouped[at]) - reference) / ulp));
+        ++checked;
+    }
+    EXPECT_EQ(differ, 0u);
+    EXPECT_GT(checked, bases.size() / 4);
+    EXPECT_LE(worst, 0.5 + 0x1p-40);
+}
+
+// Special values in a batch of one integer exponent (the first 16 lanes: every rounding
+// certain), and the lanes whose rounding squaring cannot settle, which send their batch the
+// general way (the second batch): NaN, and an exact power on a rounding tie ((2^-75)^2 =
+// 2^-150, half the smallest denormal, rounds to even: 0).
+TEST(ExactTranscendentals, PowWithOneIntegerExponentKeepsTheSpecialValues) {
+    std::vector<float> bases{0.0f, -0.0f, kInf, -kInf, 1.0f, -3.0f, 0x3p-76f, 0.5f,
+                             2.0f, 0x1p64f, 0x1p-64f, 1.5f, -1.0f, 0x1p-100f, 3.0f, 1e19f,
+                             kNaN, 0x1p-75f, -0x1p-75f, 3.0f};
+    const std::vector<float> exponents(bases.size(), 2.0f);
+    const auto r = evaluate(Opcode::Pow, bases, exponents, emu::Transcendentals::Exact);
+    EXPECT_TRUE(same_bits(r[0], 0.0f));
+    EXPECT_TRUE(same_bits(r[1], 0.0f));  // |-0|^2 = +0
+    EXPECT_EQ(r[2], kInf);
+    EXPECT_EQ(r[3], kInf);
+    EXPECT_EQ(r[4], 1.0f);
+    EXPECT_EQ(r[5], 9.0f);  // |-3|^2
+    EXPECT_EQ(r[6], 0x1p-149f);  // 1.125 * 2^-149 rounds to the smallest denormal
+    EXPECT_EQ(r[7], 0.25f);
+    EXPECT_EQ(r[8], 4.0f);
+    EXPECT_EQ(r[9], kInf);  // 2^128 overflows
+    EXPECT_EQ(r[10], 0x1p-128f);  // a denormal, exact
+    EXPECT_EQ(r[11], 2.25f);
+    EXPECT_EQ(r[12], 1.0f);
+    EXPECT_TRUE(same_bits(r[13], 0.0f));  // 2^-200 underflows
+    EXPECT_EQ(r[14], 9.0f);
+    EXPECT_EQ(r[15], 1e38f);  // 10^38 correctly rounded
+    EXPECT_TRUE(std::isnan(r[16]));
+    EXPECT_TRUE(same_bits(r[17], 0.0f));
+    EXPECT_TRUE(same_bits(r[18], 0.0f));
+    EXPECT_EQ(r[19], 9.0f);
 }
 
 // IEEE pow's special cases on |base| in exact mode (docs/numerics.md rows "pow").
