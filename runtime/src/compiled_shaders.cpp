@@ -17,7 +17,8 @@ struct Entry {
 
 bool same_program(const emu::Executable& a, const emu::Executable& b) {
     return a.version() == b.version() && a.precision() == b.precision() && a.transcendentals() == b.transcendentals() &&
-           a.constant_count() == b.constant_count() && std::ranges::equal(a.steps(), b.steps());
+           a.constant_count() == b.constant_count() && std::ranges::equal(a.steps(), b.steps()) &&
+           a.defs() == b.defs();  // the compiled code holds the def values
 }
 
 }  // namespace

@@ -28,6 +28,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -313,6 +314,9 @@ public:
         for (auto*& scratch : sources_) scratch = new_scratch(vector_type);
         result_ = new_scratch(vector_type);
 
+        defs_.clear();
+        for (const auto& [index, value] : executable.defs())
+            if (index < executable.constant_count()) defs_[index] = value;  // the last def wins, as in bind_constants
         const auto steps = executable.steps();
         const bool fast = executable.transcendentals() == Transcendentals::Fast;
         for (const Step& step : steps) {
@@ -330,6 +334,16 @@ private:
     }
 
     llvm::Value* u32(unsigned value) { return builder_->getInt32(value); }
+
+    // A private constant [4 x float] holding `value`.
+    llvm::Value* def_global(const std::array<float, 4>& value) {
+        llvm::Type* f32 = llvm::Type::getFloatTy(context_);
+        auto* type = llvm::ArrayType::get(f32, 4);
+        std::vector<llvm::Constant*> elements;
+        for (float v : value) elements.push_back(llvm::ConstantFP::get(f32, static_cast<double>(v)));
+        return new llvm::GlobalVariable(module_, type, true, llvm::GlobalValue::PrivateLinkage,
+                                        llvm::ConstantArray::get(type, elements), "sm2_def");
+    }
 
     // Calls kernel `name` with `arguments` (pointers cast to the parameter types).
     std::string call(const std::string& name, std::vector<llvm::Value*> arguments) {
@@ -354,6 +368,12 @@ private:
             return call("sm2_k_fetch_lanes",
                         {scratch, batch_, u32(s.index), u32(s.swizzle), u32(s.negate), u32(s.channels)});
         case OperandKind::Constant:
+            // A def'd register holds its def value in every constant file the executable binds,
+            // so it is read from a constant in the module: the kernels' special-value tests on
+            // it (0 * x, pow's integer exponent) fold away.
+            if (auto def = defs_.find(s.index); def != defs_.end())
+                return call("sm2_k_fetch_constant",
+                            {scratch, def_global(def->second), u32(0), u32(s.swizzle), u32(s.negate), u32(s.channels)});
             return call("sm2_k_fetch_constant",
                         {scratch, constants_, u32(s.index), u32(s.swizzle), u32(s.negate), u32(s.channels)});
         case OperandKind::RelativeConstant:
@@ -416,6 +436,7 @@ private:
     llvm::Value* constant_count_ = nullptr;
     llvm::Value* sampler_ = nullptr;
     llvm::Value* sample_ = nullptr;
+    std::map<unsigned, std::array<float, 4>> defs_;  // register -> def value
     std::array<llvm::AllocaInst*, 3> sources_{};
     llvm::AllocaInst* result_ = nullptr;
 };

@@ -85,6 +85,8 @@ public:
     [[nodiscard]] const std::array<uint8_t, kSlotCount>& components_written() const { return components_written_; }
     // Once per draw: the application's constants (missing ones read (0,0,0,0)) with the
     // shader's def values on top.
+    // The shader's def values (register, value), in the order bind_constants() applies them.
+    [[nodiscard]] const std::vector<std::pair<unsigned, std::array<float, 4>>>& defs() const { return defs_; }
     [[nodiscard]] ConstantFile bind_constants(std::span<const std::array<float, 4>> application = {}) const;
     // One line per step ("dp4 oPos.x, v0, c0"), for tests and debugging.
     [[nodiscard]] std::string describe() const;
