@@ -361,10 +361,23 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     std::shared_ptr<ShaderObject> ff_vs, ff_ps;
     std::vector<std::array<float, 4>> ff_vs_constants, ff_ps_constants;
     if (!vertex_shader_) {
-        const auto lighting = other_render_states_.find(137), vertex_blend = other_render_states_.find(151);
-        auto generated = fixed_function_vertex_program(
-            fixed_function_, render_state_, lighting != other_render_states_.end() && lighting->second != 0,
-            vertex_blend != other_render_states_.end() ? vertex_blend->second : 0, viewport_, declaration_->elements);
+        const auto state = [&](uint32_t id, uint32_t fallback) {
+            const auto it = other_render_states_.find(id);
+            return it != other_render_states_.end() ? it->second : fallback;
+        };
+        VertexProcessingStates states;
+        states.lighting = state(137, 1) != 0;  // D3DRS_LIGHTING
+        states.ambient = state(139, 0);
+        states.color_vertex = state(141, 1) != 0;
+        states.local_viewer = state(142, 1) != 0;
+        states.normalize_normals = state(143, 0) != 0;
+        states.diffuse_source = state(145, 1);
+        states.specular_source = state(146, 2);
+        states.ambient_source = state(147, 0);
+        states.emissive_source = state(148, 0);
+        states.vertex_blend = state(151, 0);
+        auto generated = fixed_function_vertex_program(fixed_function_, render_state_, states, viewport_,
+                                                       declaration_->elements);
         if (!generated.program) return CallResult::fail(generated.error);
         ff_vs = fixed_function_shader(fixed_function_programs_, generated, error);
         if (!ff_vs) return CallResult::fail(error);

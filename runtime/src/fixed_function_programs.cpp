@@ -4,6 +4,7 @@
 #include "fixed_function_programs.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace sm2::runtime {
 
@@ -106,39 +107,78 @@ std::array<float, 4> color_of(uint32_t argb) {
 }
 
 // D3DDECLUSAGE values of the elements the vertex program reads.
-constexpr uint8_t kUsagePosition = 0, kUsageTexCoord = 5, kUsagePositionT = 9, kUsageColor = 10;
+constexpr uint8_t kUsagePosition = 0, kUsageNormal = 3, kUsageTexCoord = 5, kUsagePositionT = 9, kUsageColor = 10;
 
 // Vertex program input registers.
-constexpr unsigned kInPosition = 0, kInDiffuse = 1, kInSpecular = 2, kInTexCoord0 = 3;
+constexpr unsigned kInPosition = 0, kInDiffuse = 1, kInSpecular = 2, kInTexCoord0 = 3, kInNormal = 11;
 // Vertex program constants.
-constexpr unsigned kVcTransform = 0;      // c0..c3: (world x view x projection) transposed, or
-                                          // c0: the XYZRHW screen -> clip mapping
+constexpr unsigned kVcTransform = 0;       // c0..c3: (world x view x projection) transposed, or
+                                           // c0: the XYZRHW screen -> clip mapping
 constexpr unsigned kVcDefaultDiffuse = 4;  // (1, 1, 1, 1)
-constexpr unsigned kVcDefaultSpecular = 5; // (0, 0, 0, 0)
+constexpr unsigned kVcZero = 5;            // (0, 0, 0, 0), also the default specular
 constexpr unsigned kVcOne = 6;             // (1, 1, 1, 1)
+constexpr unsigned kVcWorldView = 7;       // c7..c10: world x view transposed (camera space)
+constexpr unsigned kVcNormal = 11;         // c11..c13: rows of the inverse of world x view's 3x3
+constexpr unsigned kVcGlobalAmbient = 14;  // AMBIENT
+constexpr unsigned kVcMaterial = 15;       // c15..c18: material diffuse, ambient, specular, emissive
+constexpr unsigned kVcPower = 19;          // (power, 0, 0, 0)
+constexpr unsigned kVcFog = 20;            // (FOGEND, 1 / (FOGEND - FOGSTART), FOGDENSITY, log2 e)
+constexpr unsigned kVcLightFirst = 21;     // 5 per enabled light:
+constexpr unsigned kLightDiffuse = 0, kLightSpecular = 1, kLightAmbient = 2,
+                   kLightVector = 3,       // directional: direction to the light; point: position (camera space)
+                   kLightAttenuation = 4,  // (attenuation0, 1, 2, range)
+                   kLightConstants = 5;
+
+std::array<float, 4> rgba(const ColorValue& c) { return {c.r, c.g, c.b, c.a}; }
+
+// The inverse of a row-major 3x3 matrix (zero for a singular one, as a degenerate world has no
+// meaningful normals).
+std::array<float, 9> inverse3(const std::array<float, 9>& m) {
+    const double a = m[0], b = m[1], c = m[2], d = m[3], e = m[4], f = m[5], g = m[6], h = m[7], i = m[8];
+    const double det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g);
+    if (det == 0) return {};
+    const double k = 1.0 / det;
+    return {static_cast<float>((e * i - f * h) * k), static_cast<float>((c * h - b * i) * k),
+            static_cast<float>((b * f - c * e) * k), static_cast<float>((f * g - d * i) * k),
+            static_cast<float>((a * i - c * g) * k), static_cast<float>((c * d - a * f) * k),
+            static_cast<float>((d * h - e * g) * k), static_cast<float>((b * g - a * h) * k),
+            static_cast<float>((a * e - b * d) * k)};
+}
 
 }  // namespace
 
-FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff, const RenderState& rs, bool lighting,
-                                                   uint32_t vertex_blend, const Viewport& viewport,
+FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff, const RenderState& rs,
+                                                   const VertexProcessingStates& states, const Viewport& viewport,
                                                    std::span<const VertexElement> declaration) {
-    bool has_position = false, pretransformed = false, has_diffuse = false, has_specular = false;
+    bool has_position = false, pretransformed = false, has_diffuse = false, has_specular = false, has_normal = false;
     std::array<bool, 8> has_texcoord{};
     for (const auto& e : declaration) {
         if (e.usage == kUsagePosition && e.usage_index == 0) has_position = true;
         if (e.usage == kUsagePositionT && e.usage_index == 0) has_position = pretransformed = true;
+        if (e.usage == kUsageNormal && e.usage_index == 0) has_normal = true;
         if (e.usage == kUsageColor && e.usage_index == 0) has_diffuse = true;
         if (e.usage == kUsageColor && e.usage_index == 1) has_specular = true;
         if (e.usage == kUsageTexCoord && e.usage_index < 8) has_texcoord[e.usage_index] = true;
     }
     if (!has_position) return refused("fixed-function vertex processing: the declaration has no POSITION or POSITIONT 0");
-    if (!pretransformed) {
-        if (lighting) return refused("fixed-function lighting is not emulated yet (set LIGHTING FALSE)");
-        if (vertex_blend != 0) return refused("fixed-function vertex blending is not emulated");
-    }
-    const bool vertex_fog = rs.fog_enable && rs.fog_table_mode == FogMode::None;
-    if (vertex_fog && !pretransformed && rs.fog_vertex_mode != FogMode::None)
-        return refused("fixed-function vertex fog (FOGVERTEXMODE) is not emulated yet");
+    const bool lighting = states.lighting && !pretransformed;
+    if (!pretransformed && states.vertex_blend != 0) return refused("fixed-function vertex blending is not emulated");
+    const bool vertex_fog =
+        rs.fog_enable && rs.fog_table_mode == FogMode::None && !pretransformed && rs.fog_vertex_mode != FogMode::None;
+    if (vertex_fog && rs.range_fog_enable) return refused("fixed-function range fog (RANGEFOGENABLE) is not emulated yet");
+    std::vector<const Light*> lights;
+    if (lighting)
+        for (uint32_t index : ff.enabled_lights) {
+            const Light& light = ff.lights.at(index);
+            if (light.type == LightType::Spot)
+                return refused("fixed-function lighting: spot lights (light " + std::to_string(index) +
+                               ") are not emulated yet");
+            lights.push_back(&light);
+        }
+    for (uint32_t source : {states.diffuse_source, states.specular_source, states.ambient_source, states.emissive_source})
+        if (lighting && source > 2)
+            return refused("fixed-function lighting: material source " + std::to_string(source) +
+                           " is not MATERIAL, COLOR1 or COLOR2");
     for (unsigned s = 0; s < kMaxTextureStages; ++s) {
         const uint32_t tci = ff.stages[s][kTssTexCoordIndex];
         if (tci >> 16 != 0)
@@ -156,17 +196,22 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
     const auto in = [](unsigned r, uint8_t swizzle = isa::kSwizzleIdentity) { return src(RegisterType::Input, r, swizzle); };
     const auto c = [](unsigned r, uint8_t swizzle = isa::kSwizzleIdentity) { return src(RegisterType::Const, r, swizzle); };
     const auto r = [](unsigned n, uint8_t swizzle = isa::kSwizzleIdentity) { return src(RegisterType::Temp, n, swizzle); };
+    const auto rd = [](unsigned n, uint8_t mask = isa::kMaskAll) { return dst(RegisterType::Temp, n, mask); };
+    constexpr uint8_t kX = 0x1, kY = 0x2, kSwizzleX = 0x00, kSwizzleY = 0x55, kSwizzleZ = 0xAA;
     b.dcl_input(RegisterType::Input, kInPosition, pretransformed ? isa::DeclUsage::PositionT : isa::DeclUsage::Position);
     if (has_diffuse) b.dcl_input(RegisterType::Input, kInDiffuse, isa::DeclUsage::Color, 0);
     if (has_specular) b.dcl_input(RegisterType::Input, kInSpecular, isa::DeclUsage::Color, 1);
     for (unsigned t = 0; t < 8; ++t)
         if (has_texcoord[t])
             b.dcl_input(RegisterType::Input, kInTexCoord0 + t, isa::DeclUsage::TexCoord, static_cast<uint8_t>(t));
+    if (lighting && has_normal) b.dcl_input(RegisterType::Input, kInNormal, isa::DeclUsage::Normal, 0);
 
-    std::vector<std::array<float, 4>> constants(kVcOne + 1, std::array<float, 4>{0, 0, 0, 0});
+    std::vector<std::array<float, 4>> constants(kVcLightFirst + kLightConstants * lights.size(),
+                                                std::array<float, 4>{0, 0, 0, 0});
     constants[kVcDefaultDiffuse] = {1, 1, 1, 1};
     constants[kVcOne] = {1, 1, 1, 1};
     const auto o_pos = [](uint8_t mask) { return dst(RegisterType::RastOut, 0, mask); };
+    const Matrix4 world_view = multiply(ff.world[0], ff.view);
     if (pretransformed) {
         // XYZRHW: x, y are render-target pixels, z the depth, rhw 1/w. The clip-space position
         // ((x - X) 2/W - 1, 1 - (y - Y) 2/H, z, 1) w with w = 1/rhw is what the viewport mapping
@@ -184,24 +229,155 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
     } else {
         // Row vectors: p' = p (World View Projection); m4x4 takes dot products with rows c0..c3,
         // so the constants hold the product's columns.
-        const Matrix4 wvp = multiply(multiply(ff.world[0], ff.view), ff.projection);
+        const Matrix4 wvp = multiply(world_view, ff.projection);
         for (unsigned row = 0; row < 4; ++row)
-            for (unsigned col = 0; col < 4; ++col) constants[kVcTransform + row][col] = wvp[col * 4 + row];
+            for (unsigned col = 0; col < 4; ++col) {
+                constants[kVcTransform + row][col] = wvp[col * 4 + row];
+                constants[kVcWorldView + row][col] = world_view[col * 4 + row];
+            }
         b.op(Opcode::M4x4, o_pos(isa::kMaskAll), {in(kInPosition), c(kVcTransform)});
     }
-    // Lighting off: the vertex colours as given, D3D9's defaults where the vertex has none
-    // (diffuse opaque white, specular 0).
-    b.op(Opcode::Mov, dst(RegisterType::AttrOut, 0), {has_diffuse ? in(kInDiffuse) : c(kVcDefaultDiffuse)});
-    b.op(Opcode::Mov, dst(RegisterType::AttrOut, 1), {has_specular ? in(kInSpecular) : c(kVcDefaultSpecular)});
+    // Camera-space position in r0 (lighting and fog read it).
+    if (lighting || vertex_fog) b.op(Opcode::M4x4, rd(0), {in(kInPosition), c(kVcWorldView)});
+
+    if (lighting) {
+        // D3D9 "Mathematics of Lighting" (camera space): colour = Ce + Ca (Ga + sum Atten La)
+        // + Cd sum (Atten Ld max(N.L, 0)), specular = Cs sum (Atten Ls (N.H)^P) where N.L > 0;
+        // H = norm(norm(-P) + L) with LOCALVIEWER, norm((0, 0, 1) + L) without. Normals go
+        // through the inverse transpose of world x view's 3x3.
+        const std::array<float, 9> wv3{world_view[0], world_view[1], world_view[2], world_view[4], world_view[5],
+                                       world_view[6], world_view[8], world_view[9], world_view[10]};
+        const auto inv = inverse3(wv3);
+        for (unsigned j = 0; j < 3; ++j) constants[kVcNormal + j] = {inv[j * 3], inv[j * 3 + 1], inv[j * 3 + 2], 0};
+        constants[kVcGlobalAmbient] = color_of(states.ambient);
+        constants[kVcMaterial + 0] = rgba(ff.material.diffuse);
+        constants[kVcMaterial + 1] = rgba(ff.material.ambient);
+        constants[kVcMaterial + 2] = rgba(ff.material.specular);
+        constants[kVcMaterial + 3] = rgba(ff.material.emissive);
+        constants[kVcPower] = {ff.material.power, 0, 0, 0};
+        // r1 normal, r2 direction to the eye, r3 diffuse sum, r4 specular sum, r5 ambient sum.
+        if (has_normal) {
+            // nrm may not write its own source: the transformed normal goes through r11.
+            b.op(Opcode::M3x3, rd(states.normalize_normals ? 11 : 1, kXYZ), {in(kInNormal), c(kVcNormal)});
+            if (states.normalize_normals) b.op(Opcode::Nrm, rd(1, kXYZ), {r(11)});
+        } else {
+            b.op(Opcode::Mov, rd(1), {c(kVcZero)});
+        }
+        if (states.local_viewer) {
+            b.op(Opcode::Nrm, rd(2, kXYZ), {r(0)});
+            b.op(Opcode::Mov, rd(2, kXYZ), {negated(r(2))});
+        } else {
+            b.op(Opcode::Mov, rd(2), {c(kVcZero)});
+            b.op(Opcode::Mov, rd(2, kZ), {c(kVcOne)});
+        }
+        for (unsigned n : {3u, 4u, 5u}) b.op(Opcode::Mov, rd(n), {c(kVcZero)});
+        for (size_t i = 0; i < lights.size(); ++i) {
+            const Light& light = *lights[i];
+            const unsigned base = kVcLightFirst + kLightConstants * static_cast<unsigned>(i);
+            constants[base + kLightDiffuse] = rgba(light.diffuse);
+            constants[base + kLightSpecular] = rgba(light.specular);
+            constants[base + kLightAmbient] = rgba(light.ambient);
+            constants[base + kLightAttenuation] = {light.attenuation0, light.attenuation1, light.attenuation2, light.range};
+            // r6.xyz direction to the light, r6.w attenuation.
+            if (light.type == LightType::Directional) {
+                // The direction the light shines, into camera space (the view matrix; D3D9
+                // light directions are in world space), reversed and normalized.
+                const Vector3 d = light.direction;
+                float v[3];
+                for (unsigned k = 0; k < 3; ++k)
+                    v[k] = -(d.x * ff.view[0 * 4 + k] + d.y * ff.view[1 * 4 + k] + d.z * ff.view[2 * 4 + k]);
+                const float length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+                const float k = length > 0 ? 1.0f / length : 0.0f;
+                constants[base + kLightVector] = {v[0] * k, v[1] * k, v[2] * k, 0};
+                b.op(Opcode::Mov, rd(6, kXYZ), {c(base + kLightVector)});
+                b.op(Opcode::Mov, rd(6, kW), {c(kVcOne, kSwizzleW)});
+            } else {
+                // Point: the position into camera space; Atten = 1 / (a0 + a1 d + a2 d^2) within
+                // the range, 0 beyond it.
+                const Vector3 p = light.position;
+                std::array<float, 4> v{};
+                for (unsigned k = 0; k < 3; ++k)
+                    v[k] = p.x * ff.view[0 * 4 + k] + p.y * ff.view[1 * 4 + k] + p.z * ff.view[2 * 4 + k] + ff.view[12 + k];
+                constants[base + kLightVector] = v;
+                b.op(Opcode::Add, rd(6, kXYZ), {c(base + kLightVector), negated(r(0))});
+                b.op(Opcode::Dp3, rd(7, kW), {r(6), r(6)});                      // d^2
+                b.op(Opcode::Rsq, rd(7, kX), {r(7, kSwizzleW)});                   // 1/d
+                b.op(Opcode::Mul, rd(6, kXYZ), {r(6), r(7, kSwizzleX)});
+                b.op(Opcode::Mul, rd(7, kY), {r(7, kSwizzleW), r(7, kSwizzleX)});  // d
+                b.op(Opcode::Mad, rd(7, kZ), {c(base + kLightAttenuation, kSwizzleY), r(7, kSwizzleY),
+                                              c(base + kLightAttenuation, kSwizzleX)});
+                b.op(Opcode::Mad, rd(7, kZ), {c(base + kLightAttenuation, kSwizzleZ), r(7, kSwizzleW), r(7, kSwizzleZ)});
+                b.op(Opcode::Rcp, rd(6, kW), {r(7, kSwizzleZ)});
+                b.op(Opcode::Sge, rd(7, kZ), {c(base + kLightAttenuation, kSwizzleW), r(7, kSwizzleY)});  // d <= range
+                b.op(Opcode::Mul, rd(6, kW), {r(6, kSwizzleW), r(7, kSwizzleZ)});
+            }
+            b.op(Opcode::Dp3, rd(7, kX), {r(1), r(6)});                            // N.L
+            b.op(Opcode::Max, rd(7, kX), {r(7, kSwizzleX), c(kVcZero)});
+            b.op(Opcode::Mul, rd(8, kX), {r(7, kSwizzleX), r(6, kSwizzleW)});
+            b.op(Opcode::Mad, rd(3, kXYZ), {c(base + kLightDiffuse), r(8, kSwizzleX), r(3)});
+            b.op(Opcode::Mad, rd(5, kXYZ), {c(base + kLightAmbient), r(6, kSwizzleW), r(5)});
+            b.op(Opcode::Add, rd(8, kXYZ), {r(2), r(6)});                          // H
+            b.op(Opcode::Nrm, rd(9, kXYZ), {r(8)});
+            b.op(Opcode::Dp3, rd(9, kX), {r(1), r(9)});                            // N.H
+            b.op(Opcode::Max, rd(9, kX), {r(9, kSwizzleX), c(kVcZero)});
+            b.op(Opcode::Pow, rd(9, kX), {r(9, kSwizzleX), c(kVcPower, kSwizzleX)});
+            b.op(Opcode::Slt, rd(9, kY), {c(kVcZero), r(7, kSwizzleX)});             // N.L > 0
+            b.op(Opcode::Mul, rd(9, kX), {r(9, kSwizzleX), r(9, kSwizzleY)});
+            b.op(Opcode::Mul, rd(9, kX), {r(9, kSwizzleX), r(6, kSwizzleW)});
+            b.op(Opcode::Mad, rd(4, kXYZ), {c(base + kLightSpecular), r(9, kSwizzleX), r(4)});
+        }
+        // Material colour sources (COLORVERTEX): a vertex colour where the vertex has it.
+        const auto source = [&](uint32_t value, unsigned material) {
+            if (states.color_vertex && value == 1 && has_diffuse) return in(kInDiffuse);
+            if (states.color_vertex && value == 2 && has_specular) return in(kInSpecular);
+            return c(kVcMaterial + material);
+        };
+        const auto cd = source(states.diffuse_source, 0), ca = source(states.ambient_source, 1),
+                   cs = source(states.specular_source, 2), ce = source(states.emissive_source, 3);
+        b.op(Opcode::Add, rd(5, kXYZ), {r(5), c(kVcGlobalAmbient)});
+        b.op(Opcode::Mad, rd(5, kXYZ), {r(5), ca, ce});
+        b.op(Opcode::Mad, rd(5, kXYZ), {cd, r(3), r(5)});
+        b.op(Opcode::Mov, rd(5, kW), {cd});                                         // alpha: diffuse's
+        b.op(Opcode::Max, rd(5), {r(5), c(kVcZero)});
+        b.op(Opcode::Min, dst(RegisterType::AttrOut, 0), {r(5), c(kVcOne)});
+        b.op(Opcode::Mul, rd(4, kXYZ), {r(4), cs});
+        b.op(Opcode::Mov, rd(4, kW), {has_specular ? in(kInSpecular) : c(kVcZero)});
+        b.op(Opcode::Max, rd(4), {r(4), c(kVcZero)});
+        b.op(Opcode::Min, dst(RegisterType::AttrOut, 1), {r(4), c(kVcOne)});
+    } else {
+        // Lighting off: the vertex colours as given, D3D9's defaults where the vertex has none
+        // (diffuse opaque white, specular 0).
+        b.op(Opcode::Mov, dst(RegisterType::AttrOut, 0), {has_diffuse ? in(kInDiffuse) : c(kVcDefaultDiffuse)});
+        b.op(Opcode::Mov, dst(RegisterType::AttrOut, 1), {has_specular ? in(kInSpecular) : c(kVcZero)});
+    }
     for (unsigned s = 0; s < kMaxTextureStages; ++s) {
         const uint32_t set = ff.stages[s][kTssTexCoordIndex] & 0xFFFF;
         if (has_texcoord[set]) b.op(Opcode::Mov, dst(RegisterType::TexCrdOut, s), {in(kInTexCoord0 + set)});
     }
-    // FOGVERTEXMODE NONE: the fog factor is the specular colour's alpha (D3D9, "Vertex Fog");
-    // with no specular in the vertex, no fog (factor 1).
-    if (vertex_fog)
-        b.op(Opcode::Mov, dst(RegisterType::RastOut, 1, 0x1),
-             {has_specular ? in(kInSpecular, kSwizzleW) : c(kVcOne, kSwizzleW)});
+    const auto o_fog = dst(RegisterType::RastOut, 1);  // oFog: a scalar, no write mask
+    if (vertex_fog) {
+        // D3D9 "Vertex Fog", range fog off: the distance is camera-space z. LINEAR: (end - d) /
+        // (end - start); EXP: e^-(density d); EXP2: e^-(density d)^2.
+        constants[kVcFog] = {rs.fog_end, rs.fog_end != rs.fog_start ? 1.0f / (rs.fog_end - rs.fog_start) : 0.0f,
+                             rs.fog_density, 1.4426950408889634f};
+        if (rs.fog_vertex_mode == FogMode::Linear) {
+            b.op(Opcode::Add, rd(10, kX), {c(kVcFog, kSwizzleX), negated(r(0, kSwizzleZ))});
+            b.op(Opcode::Mul, rd(10, kX), {r(10, kSwizzleX), c(kVcFog, kSwizzleY)});
+        } else {
+            b.op(Opcode::Mul, rd(10, kX), {r(0, kSwizzleZ), c(kVcFog, kSwizzleZ)});
+            if (rs.fog_vertex_mode == FogMode::Exp2) b.op(Opcode::Mul, rd(10, kX), {r(10, kSwizzleX), r(10, kSwizzleX)});
+            b.op(Opcode::Mul, rd(10, kX), {r(10, kSwizzleX), negated(c(kVcFog, kSwizzleW))});
+            b.op(Opcode::Exp, rd(10, kX), {r(10, kSwizzleX)});
+        }
+        // Not clamped here: the merger clamps the interpolated factor per pixel, which for LINEAR
+        // equals Wine's per-pixel factor of the interpolated distance even where a primitive
+        // crosses FOGSTART or FOGEND (clamping per vertex first would bend the gradient there).
+        b.op(Opcode::Mov, o_fog, {r(10, kSwizzleX)});
+    } else if (rs.fog_enable && rs.fog_table_mode == FogMode::None) {
+        // FOGVERTEXMODE NONE (and XYZRHW vertices): the fog factor is the specular colour's
+        // alpha (D3D9, "Vertex Fog"); with no specular in the vertex, no fog (factor 1).
+        b.op(Opcode::Mov, o_fog, {has_specular ? in(kInSpecular, kSwizzleW) : c(kVcOne, kSwizzleW)});
+    }
     return std::move(b).finish(std::move(constants));
 }
 
@@ -402,8 +578,10 @@ FixedFunctionProgram fixed_function_pixel_program(const FixedFunctionState& ff, 
         if (color_op != kDotProduct3 && alpha_op != kDisable)
             emit(alpha_op, {st[kTssAlphaArg0], st[kTssAlphaArg1], st[kTssAlphaArg2]}, kW, true);
     }
-    // SPECULARENABLE: the specular colour is added after the last stage.
-    if (rs.specular_enable) b.op(Opcode::Add, dst(RegisterType::Temp, kRCurrent, kXYZ, true), {r(kRCurrent), specular});
+    // SPECULARENABLE: the specular colour is added after the last stage, not clamped before the
+    // fog blend (the target's conversion clamps): what Wine does; clamping here put 6598 pixels
+    // of ff_lit_cube's frame 2 up to 16/255 off Wine's where fog blends a sum above 1.
+    if (rs.specular_enable) b.op(Opcode::Add, dst(RegisterType::Temp, kRCurrent, kXYZ, false), {r(kRCurrent), specular});
     b.op(Opcode::Mov, dst(RegisterType::ColorOut, 0), {r(kRCurrent)});
     return std::move(b).finish(std::move(constants));
 }

@@ -26,9 +26,19 @@ struct FixedFunctionProgram {
 };
 
 // The vertex program for a draw without a vertex shader, reading the declaration's elements.
-// `lighting`, `vertex_blend`: the LIGHTING and VERTEXBLEND render states (not in RenderState).
+// The fixed-function render states RenderState does not hold, at D3D9's defaults.
+struct VertexProcessingStates {
+    bool lighting = true;              // LIGHTING
+    uint32_t ambient = 0;              // AMBIENT, D3DCOLOR
+    bool color_vertex = true;          // COLORVERTEX
+    bool local_viewer = true;          // LOCALVIEWER
+    bool normalize_normals = false;    // NORMALIZENORMALS
+    uint32_t diffuse_source = 1, specular_source = 2, ambient_source = 0, emissive_source = 0;  // D3DMCS_*
+    uint32_t vertex_blend = 0;         // VERTEXBLEND
+};
+
 [[nodiscard]] FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff, const RenderState& rs,
-                                                                 bool lighting, uint32_t vertex_blend,
+                                                                 const VertexProcessingStates& states,
                                                                  const Viewport& viewport,
                                                                  std::span<const VertexElement> declaration);
 

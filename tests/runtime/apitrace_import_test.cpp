@@ -192,13 +192,11 @@ TEST(ApitraceImport, FixedFunctionCallsOfFfLitCubeAreImported) {
          })
         EXPECT_NE(text.find(line), std::string::npos) << line;
 
-    // On the Device: the 3 draws of each frame are refused (no vertex shader: the fixed-function
-    // pipeline is not emulated yet); nothing else is.
+    // On the Device: every call runs, the 3 fixed-function draws of each frame included.
     Device device;
     const ReplayResult replayed = replay(device, r.stream);
-    for (const auto& d : replayed.diagnostics)
-        EXPECT_TRUE(d.call == "DrawPrimitive" || d.call == "DrawIndexedPrimitive") << d.to_string();
-    EXPECT_EQ(replayed.diagnostics.size(), 3u * 3u);
+    for (const auto& d : replayed.diagnostics) ADD_FAILURE() << d.to_string();
+    EXPECT_EQ(device.statistics().draws, 3u * 3u);
     EXPECT_EQ(device.fixed_function().fvf, 0x112u);
     EXPECT_EQ(device.fixed_function().enabled_lights, (std::vector<uint32_t>{0, 1}));
     EXPECT_EQ(device.fixed_function().lights.at(0).direction, (Vector3{-0.5f, -0.6f, 0.7f}));

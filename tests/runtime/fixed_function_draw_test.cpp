@@ -130,14 +130,74 @@ TEST(FixedFunctionDraw, WorldViewProjectionTransformXyzPositions) {
         }
 }
 
-TEST(FixedFunctionDraw, LightingIsRefusedUntilEmulated) {
+// A full-target XYZ | NORMAL quad at z = 0.5 (identity transforms) with one normal for all four
+// vertices, so that every vertex gets the same lit colour and the pixels show it exactly.
+std::string lit_quad(float nx, float ny, float nz) {
     Words w;
-    w.f({-1, 1, 0.5f}).f({1, 1, 0.5f}).f({-1, -1, 0.5f});
-    const Outcome o = replay_text("SetFVF XYZ\nDrawPrimitiveUP TRIANGLELIST 1 12 " + w.blob() + "\n");
-    ASSERT_EQ(o.result.diagnostics.size(), 1u);
-    EXPECT_NE(o.result.diagnostics[0].to_string().find("lighting is not emulated"), std::string::npos)
-        << o.result.diagnostics[0].to_string();
-    EXPECT_EQ(pixel(o, 0, 0), 0xFF000000u);
+    for (auto [x, y] : {std::pair{-1.0f, 1.0f}, {1.0f, 1.0f}, {-1.0f, -1.0f}, {1.0f, -1.0f}})
+        w.f({x, y, 0.5f, nx, ny, nz});
+    return "SetFVF { XYZ NORMAL }\nDrawPrimitiveUP TRIANGLESTRIP 2 24 " + w.blob() + "\n";
+}
+
+TEST(FixedFunctionDraw, DirectionalLightOnAKnownNormal) {
+    // Light: directional, diffuse (1, 0.5, 0.25), shining along +z, so L (towards the light) =
+    // (0, 0, -1); N = (0, 0.6, -0.8): N.L = 0.8. Material diffuse 0.8 (no vertex colour, so
+    // COLORVERTEX falls back to the material), ambient 0.5; AMBIENT 0x202020 (32/255).
+    // colour = Ca Ga + Cd Ld N.L = 0.5 * 0.12549 + 0.8 * 0.8 * (1, 0.5, 0.25)
+    //        = (0.70275, 0.38275, 0.22275) -> (179.2, 97.6, 56.8) -> (0xB3, 0x62, 0x39); alpha Cd.a = 1.
+    const Outcome o = replay_text(
+        "SetRenderState AMBIENT 0x00202020\n"
+        "SetMaterial { 0.8 0.8 0.8 1 } { 0.5 0.5 0.5 1 } { 0 0 0 0 } { 0 0 0 0 } 0\n"
+        "SetLight 0 DIRECTIONAL { 1 0.5 0.25 1 } { 0 0 0 0 } { 0 0 0 0 } { 0 0 0 } { 0 0 1 } 0 0 0 0 0 0 0\n"
+        "LightEnable 0 TRUE\n" + lit_quad(0, 0.6f, -0.8f));
+    expect_no_diagnostics(o.result);
+    EXPECT_EQ(pixel(o, 1, 2), 0xFFB36239u);
+    // Facing away (N.L < 0): only the ambient term, 0.0627 -> 16 (0x10).
+    const Outcome away = replay_text(
+        "SetRenderState AMBIENT 0x00202020\n"
+        "SetMaterial { 0.8 0.8 0.8 1 } { 0.5 0.5 0.5 1 } { 0 0 0 0 } { 0 0 0 0 } 0\n"
+        "SetLight 0 DIRECTIONAL { 1 0.5 0.25 1 } { 0 0 0 0 } { 0 0 0 0 } { 0 0 0 } { 0 0 1 } 0 0 0 0 0 0 0\n"
+        "LightEnable 0 TRUE\n" + lit_quad(0, 0, 1));
+    expect_no_diagnostics(away.result);
+    EXPECT_EQ(pixel(away, 1, 2), 0xFF101010u);
+}
+
+TEST(FixedFunctionDraw, PointLightAttenuationAndRange) {
+    // Point light at (0, 0, -2); the quad's corners (+-1, +-1, 0.5) are all d = sqrt(8.25) =
+    // 2.87228 from it, N = (0, 0, -1): N.L = 2.5 / d = 0.87039; Atten = 1 / (0.5 + 0.25 d) =
+    // 0.82097; white light and material: 0.71456 -> 182.2 -> 182 (0xB6).
+    const std::string material = "SetMaterial { 1 1 1 1 } { 0 0 0 0 } { 0 0 0 0 } { 0 0 0 0 } 0\n";
+    const auto light = [](const char* range) {
+        return std::string("SetLight 3 POINT { 1 1 1 1 } { 0 0 0 0 } { 0 0 0 0 } { 0 0 -2 } { 0 0 0 } ") + range +
+               " 0 0.5 0.25 0 0 0\nLightEnable 3 TRUE\n";
+    };
+    const Outcome in_range = replay_text(material + light("10") + lit_quad(0, 0, -1));
+    expect_no_diagnostics(in_range.result);
+    EXPECT_EQ(pixel(in_range, 2, 1), 0xFFB6B6B6u);
+    // Range 2.8 < d: no light at all.
+    const Outcome beyond = replay_text(material + light("2.8") + lit_quad(0, 0, -1));
+    expect_no_diagnostics(beyond.result);
+    EXPECT_EQ(pixel(beyond, 2, 1), 0xFF000000u);
+}
+
+TEST(FixedFunctionDraw, VertexFogFactorAtAKnownDepth) {
+    // Camera-space z = 0.25 everywhere (identity transforms), white vertices, FOGCOLOR blue.
+    // LINEAR start 0, end 1: f = (1 - 0.25) / 1 = 0.75: R = G = 0.75 -> 191.25 -> 0xBF, B = 1.
+    // EXP density 2: f = e^-0.5 = 0.60653 -> 154.67 -> 0x9B. EXP2: e^-0.25 = 0.77880 -> 198.6 -> 0xC7.
+    Words w;
+    for (auto [x, y] : {std::pair{-1.0f, 1.0f}, {1.0f, 1.0f}, {-1.0f, -1.0f}, {1.0f, -1.0f}}) w.f({x, y, 0.25f});
+    const auto fogged = [&](const char* mode) {
+        const Outcome o = replay_text(std::string("SetRenderState LIGHTING FALSE\nSetRenderState FOGENABLE TRUE\n"
+                                                  "SetRenderState FOGCOLOR 0xFF0000FF\nSetRenderState FOGSTART 0\n"
+                                                  "SetRenderState FOGEND 1\nSetRenderState FOGDENSITY 2\n"
+                                                  "SetRenderState FOGVERTEXMODE ") +
+                                      mode + "\nSetFVF XYZ\nDrawPrimitiveUP TRIANGLESTRIP 2 12 " + w.blob() + "\n");
+        expect_no_diagnostics(o.result);
+        return pixel(o, 2, 2);
+    };
+    EXPECT_EQ(fogged("LINEAR"), 0xFFBFBFFFu);
+    EXPECT_EQ(fogged("EXP"), 0xFF9B9BFFu);
+    EXPECT_EQ(fogged("EXP2"), 0xFFC7C7FFu);
 }
 
 // Stage 0 = OP(arg1 TFACTOR, arg2 DIFFUSE) over the whole target; the colour at pixel (0, 0).
