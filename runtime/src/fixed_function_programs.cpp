@@ -123,11 +123,13 @@ constexpr unsigned kVcGlobalAmbient = 14;  // AMBIENT
 constexpr unsigned kVcMaterial = 15;       // c15..c18: material diffuse, ambient, specular, emissive
 constexpr unsigned kVcPower = 19;          // (power, 0, 0, 0)
 constexpr unsigned kVcFog = 20;            // (FOGEND, 1 / (FOGEND - FOGSTART), FOGDENSITY, log2 e)
-constexpr unsigned kVcLightFirst = 21;     // 5 per enabled light:
+constexpr unsigned kVcLightFirst = 21;     // kLightConstants per enabled light:
 constexpr unsigned kLightDiffuse = 0, kLightSpecular = 1, kLightAmbient = 2,
                    kLightVector = 3,       // directional: direction to the light; point: position (camera space)
                    kLightAttenuation = 4,  // (attenuation0, 1, 2, range)
-                   kLightConstants = 5;
+                   kLightSpotAxis = 5,     // spot: the reversed direction (camera space, normalized)
+                   kLightSpotCone = 6,     // spot: (cos(theta/2), cos(phi/2), 1 / (cos(theta/2) - cos(phi/2)), falloff)
+                   kLightConstants = 7;
 
 std::array<float, 4> rgba(const ColorValue& c) { return {c.r, c.g, c.b, c.a}; }
 
@@ -169,11 +171,7 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
     std::vector<const Light*> lights;
     if (lighting)
         for (uint32_t index : ff.enabled_lights) {
-            const Light& light = ff.lights.at(index);
-            if (light.type == LightType::Spot)
-                return refused("fixed-function lighting: spot lights (light " + std::to_string(index) +
-                               ") are not emulated yet");
-            lights.push_back(&light);
+            lights.push_back(&ff.lights.at(index));
         }
     for (uint32_t source : {states.diffuse_source, states.specular_source, states.ambient_source, states.emissive_source})
         if (lighting && source > 2)
@@ -292,8 +290,8 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
                 b.op(Opcode::Mov, rd(6, kXYZ), {c(base + kLightVector)});
                 b.op(Opcode::Mov, rd(6, kW), {c(kVcOne, kSwizzleW)});
             } else {
-                // Point: the position into camera space; Atten = 1 / (a0 + a1 d + a2 d^2) within
-                // the range, 0 beyond it.
+                // Point and spot: the position into camera space; Atten = 1 / (a0 + a1 d + a2 d^2)
+                // within the range, 0 beyond it.
                 const Vector3 p = light.position;
                 std::array<float, 4> v{};
                 for (unsigned k = 0; k < 3; ++k)
@@ -310,6 +308,32 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
                 b.op(Opcode::Rcp, rd(6, kW), {r(7, kSwizzleZ)});
                 b.op(Opcode::Sge, rd(7, kZ), {c(base + kLightAttenuation, kSwizzleW), r(7, kSwizzleY)});  // d <= range
                 b.op(Opcode::Mul, rd(6, kW), {r(6, kSwizzleW), r(7, kSwizzleZ)});
+                if (light.type == LightType::Spot) {
+                    // D3D9 "Spotlight model": rho = L . -direction; 1 inside the inner cone
+                    // (rho > cos(theta/2)), 0 outside the outer one (rho <= cos(phi/2)), else
+                    // ((rho - cos(phi/2)) / (cos(theta/2) - cos(phi/2)))^falloff.
+                    const Vector3 d = light.direction;
+                    float axis[3];
+                    for (unsigned k = 0; k < 3; ++k)
+                        axis[k] = -(d.x * ff.view[0 * 4 + k] + d.y * ff.view[1 * 4 + k] + d.z * ff.view[2 * 4 + k]);
+                    const float length = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+                    const float k = length > 0 ? 1.0f / length : 0.0f;
+                    constants[base + kLightSpotAxis] = {axis[0] * k, axis[1] * k, axis[2] * k, 0};
+                    const float cos_theta = std::cos(light.theta / 2), cos_phi = std::cos(light.phi / 2);
+                    // theta >= phi: no penumbra, a step at the outer cone.
+                    const float scale = cos_theta > cos_phi ? 1.0f / (cos_theta - cos_phi) : 1e30f;
+                    constants[base + kLightSpotCone] = {cos_theta, cos_phi, scale, light.falloff};
+                    b.op(Opcode::Dp3, rd(8, kX), {r(6), c(base + kLightSpotAxis)});
+                    b.op(Opcode::Add, rd(8, kY), {r(8, kSwizzleX), negated(c(base + kLightSpotCone, kSwizzleY))});
+                    b.op(Opcode::Mul, rd(8, kY), {r(8, kSwizzleY), c(base + kLightSpotCone, kSwizzleZ)});
+                    b.op(Opcode::Max, rd(8, kY), {r(8, kSwizzleY), c(kVcZero)});
+                    b.op(Opcode::Min, rd(8, kY), {r(8, kSwizzleY), c(kVcOne)});
+                    // x^falloff, and 0 outside the cone whatever pow(0, 0) gives.
+                    b.op(Opcode::Slt, rd(8, kZ), {c(kVcZero), r(8, kSwizzleY)});
+                    b.op(Opcode::Pow, rd(8, kY), {r(8, kSwizzleY), c(base + kLightSpotCone, kSwizzleW)});
+                    b.op(Opcode::Mul, rd(8, kY), {r(8, kSwizzleY), r(8, kSwizzleZ)});
+                    b.op(Opcode::Mul, rd(6, kW), {r(6, kSwizzleW), r(8, kSwizzleY)});
+                }
             }
             b.op(Opcode::Dp3, rd(7, kX), {r(1), r(6)});                            // N.L
             b.op(Opcode::Max, rd(7, kX), {r(7, kSwizzleX), c(kVcZero)});

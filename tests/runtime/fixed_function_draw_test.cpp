@@ -180,6 +180,28 @@ TEST(FixedFunctionDraw, PointLightAttenuationAndRange) {
     EXPECT_EQ(pixel(beyond, 2, 1), 0xFF000000u);
 }
 
+TEST(FixedFunctionDraw, SpotLightPenumbra) {
+    // The point light of PointLightAttenuationAndRange as a spot shining along +z, theta =
+    // 0.902054 (cos(theta/2) = 0.9), phi = 1.287002 (cos(phi/2) = 0.8): rho = L . (0, 0, -1) =
+    // 0.87039 lies in the penumbra, x = (0.87039 - 0.8) / 0.1 = 0.70391. Falloff 1: 0.87039 *
+    // 0.82097 * 0.70391 = 0.50297 -> 128.26 -> 0x80; falloff 2: 0.35403 -> 90.28 -> 0x5A.
+    const auto spot = [](const char* falloff, const char* phi) {
+        return "SetMaterial { 1 1 1 1 } { 0 0 0 0 } { 0 0 0 0 } { 0 0 0 0 } 0\n"
+               "SetLight 0 SPOT { 1 1 1 1 } { 0 0 0 0 } { 0 0 0 0 } { 0 0 -2 } { 0 0 1 } 10 " +
+               std::string(falloff) + " 0.5 0.25 0 0.902054 " + phi + "\nLightEnable 0 TRUE\n" + lit_quad(0, 0, -1);
+    };
+    const Outcome linear = replay_text(spot("1", "1.287002"));
+    expect_no_diagnostics(linear.result);
+    EXPECT_EQ(pixel(linear, 1, 1), 0xFF808080u);
+    const Outcome squared = replay_text(spot("2", "1.287002"));
+    expect_no_diagnostics(squared.result);
+    EXPECT_EQ(pixel(squared, 1, 1), 0xFF5A5A5Au);
+    // phi = theta: no penumbra, rho = 0.87039 < cos(theta/2) = 0.9 is outside: black.
+    const Outcome outside = replay_text(spot("1", "0.902054"));
+    expect_no_diagnostics(outside.result);
+    EXPECT_EQ(pixel(outside, 1, 1), 0xFF000000u);
+}
+
 TEST(FixedFunctionDraw, VertexFogFactorAtAKnownDepth) {
     // Camera-space z = 0.25 everywhere (identity transforms), white vertices, FOGCOLOR blue.
     // LINEAR start 0, end 1: f = (1 - 0.25) / 1 = 0.75: R = G = 0.75 -> 191.25 -> 0xBF, B = 1.
