@@ -177,11 +177,24 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
         if (lighting && source > 2)
             return refused("fixed-function lighting: material source " + std::to_string(source) +
                            " is not MATERIAL, COLOR1 or COLOR2");
+    // D3DTSS_TCI_* texture coordinate generation: PASSTHRU 0, CAMERASPACENORMAL 1,
+    // CAMERASPACEPOSITION 2, CAMERASPACEREFLECTIONVECTOR 3 (SPHEREMAP 4 is refused).
+    constexpr uint32_t kTciPassThru = 0, kTciNormal = 1, kTciPosition = 2, kTciReflection = 3, kTciSphereMap = 4;
+    bool generates_from_normal = false, generates_from_position = false;
     for (unsigned s = 0; s < kMaxTextureStages; ++s) {
         const uint32_t tci = ff.stages[s][kTssTexCoordIndex];
-        if (tci >> 16 != 0)
+        const uint32_t mode = tci >> 16;
+        if (mode == kTciSphereMap)
             return refused("texture stage " + std::to_string(s) +
-                           ": TEXCOORDINDEX texture coordinate generation is not emulated yet");
+                           ": TEXCOORDINDEX SPHEREMAP texture coordinate generation is not emulated yet");
+        if (mode > kTciSphereMap)
+            return refused("texture stage " + std::to_string(s) + ": TEXCOORDINDEX mode " + std::to_string(mode) +
+                           " is not a D3DTSS_TCI mode");
+        if (mode != kTciPassThru && pretransformed)
+            return refused("texture stage " + std::to_string(s) +
+                           ": TEXCOORDINDEX texture coordinate generation needs untransformed (XYZ) vertices");
+        generates_from_normal |= mode == kTciNormal || mode == kTciReflection;
+        generates_from_position |= mode == kTciPosition || mode == kTciReflection;
         if ((tci & 0xFFFF) >= 8)
             return refused("texture stage " + std::to_string(s) + ": TEXCOORDINDEX " + std::to_string(tci & 0xFFFF) +
                            " is not a texture coordinate set (0..7)");
@@ -202,7 +215,8 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
     for (unsigned t = 0; t < 8; ++t)
         if (has_texcoord[t])
             b.dcl_input(RegisterType::Input, kInTexCoord0 + t, isa::DeclUsage::TexCoord, static_cast<uint8_t>(t));
-    if (lighting && has_normal) b.dcl_input(RegisterType::Input, kInNormal, isa::DeclUsage::Normal, 0);
+    const bool needs_normal = lighting || generates_from_normal;
+    if (needs_normal && has_normal) b.dcl_input(RegisterType::Input, kInNormal, isa::DeclUsage::Normal, 0);
 
     std::vector<std::array<float, 4>> constants(kVcLightFirst + kLightConstants * lights.size(),
                                                 std::array<float, 4>{0, 0, 0, 0});
@@ -236,24 +250,14 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
         b.op(Opcode::M4x4, o_pos(isa::kMaskAll), {in(kInPosition), c(kVcTransform)});
     }
     // Camera-space position in r0 (lighting and fog read it).
-    if (lighting || vertex_fog) b.op(Opcode::M4x4, rd(0), {in(kInPosition), c(kVcWorldView)});
-
-    if (lighting) {
-        // D3D9 "Mathematics of Lighting" (camera space): colour = Ce + Ca (Ga + sum Atten La)
-        // + Cd sum (Atten Ld max(N.L, 0)), specular = Cs sum (Atten Ls (N.H)^P) where N.L > 0;
-        // H = norm(norm(-P) + L) with LOCALVIEWER, norm((0, 0, 1) + L) without. Normals go
-        // through the inverse transpose of world x view's 3x3.
+    if (lighting || vertex_fog || generates_from_position) b.op(Opcode::M4x4, rd(0), {in(kInPosition), c(kVcWorldView)});
+    // Camera-space normal in r1 (lighting and texgen read it): through the inverse transpose of
+    // world x view's 3x3, normalized with NORMALIZENORMALS; (0, 0, 0) when the vertex has none.
+    if (needs_normal) {
         const std::array<float, 9> wv3{world_view[0], world_view[1], world_view[2], world_view[4], world_view[5],
                                        world_view[6], world_view[8], world_view[9], world_view[10]};
         const auto inv = inverse3(wv3);
         for (unsigned j = 0; j < 3; ++j) constants[kVcNormal + j] = {inv[j * 3], inv[j * 3 + 1], inv[j * 3 + 2], 0};
-        constants[kVcGlobalAmbient] = color_of(states.ambient);
-        constants[kVcMaterial + 0] = rgba(ff.material.diffuse);
-        constants[kVcMaterial + 1] = rgba(ff.material.ambient);
-        constants[kVcMaterial + 2] = rgba(ff.material.specular);
-        constants[kVcMaterial + 3] = rgba(ff.material.emissive);
-        constants[kVcPower] = {ff.material.power, 0, 0, 0};
-        // r1 normal, r2 direction to the eye, r3 diffuse sum, r4 specular sum, r5 ambient sum.
         if (has_normal) {
             // nrm may not write its own source: the transformed normal goes through r11.
             b.op(Opcode::M3x3, rd(states.normalize_normals ? 11 : 1, kXYZ), {in(kInNormal), c(kVcNormal)});
@@ -261,6 +265,19 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
         } else {
             b.op(Opcode::Mov, rd(1), {c(kVcZero)});
         }
+    }
+
+    if (lighting) {
+        // D3D9 "Mathematics of Lighting" (camera space): colour = Ce + Ca (Ga + sum Atten La)
+        // + Cd sum (Atten Ld max(N.L, 0)), specular = Cs sum (Atten Ls (N.H)^P) where N.L > 0;
+        // H = norm(norm(-P) + L) with LOCALVIEWER, norm((0, 0, 1) + L) without.
+        constants[kVcGlobalAmbient] = color_of(states.ambient);
+        constants[kVcMaterial + 0] = rgba(ff.material.diffuse);
+        constants[kVcMaterial + 1] = rgba(ff.material.ambient);
+        constants[kVcMaterial + 2] = rgba(ff.material.specular);
+        constants[kVcMaterial + 3] = rgba(ff.material.emissive);
+        constants[kVcPower] = {ff.material.power, 0, 0, 0};
+        // r1 normal, r2 direction to the eye, r3 diffuse sum, r4 specular sum, r5 ambient sum.
         if (states.local_viewer) {
             b.op(Opcode::Nrm, rd(2, kXYZ), {r(0)});
             b.op(Opcode::Mov, rd(2, kXYZ), {negated(r(2))});
@@ -375,8 +392,29 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
         b.op(Opcode::Mov, dst(RegisterType::AttrOut, 1), {has_specular ? in(kInSpecular) : c(kVcZero)});
     }
     for (unsigned s = 0; s < kMaxTextureStages; ++s) {
-        const uint32_t set = ff.stages[s][kTssTexCoordIndex] & 0xFFFF;
-        if (has_texcoord[set]) b.op(Opcode::Mov, dst(RegisterType::TexCrdOut, s), {in(kInTexCoord0 + set)});
+        const uint32_t set = ff.stages[s][kTssTexCoordIndex] & 0xFFFF, mode = ff.stages[s][kTssTexCoordIndex] >> 16;
+        const auto o_t = [&](uint8_t mask) { return dst(RegisterType::TexCrdOut, s, mask); };
+        if (mode == kTciPassThru) {
+            if (has_texcoord[set]) b.op(Opcode::Mov, o_t(isa::kMaskAll), {in(kInTexCoord0 + set)});
+            continue;
+        }
+        // Generated: (x, y, z, 1) of the camera-space normal, position, or the reflection of the
+        // view direction I about N, R = I - 2 (N.I) N, with I = norm(P) under LOCALVIEWER and
+        // (0, 0, 1) without (D3D9 "Texture Coordinate Processing"; as Wine).
+        if (mode == kTciNormal) b.op(Opcode::Mov, o_t(kXYZ), {r(1)});
+        if (mode == kTciPosition) b.op(Opcode::Mov, o_t(kXYZ), {r(0)});
+        if (mode == kTciReflection) {
+            if (states.local_viewer) {
+                b.op(Opcode::Nrm, rd(8, kXYZ), {r(0)});
+            } else {
+                b.op(Opcode::Mov, rd(8), {c(kVcZero)});
+                b.op(Opcode::Mov, rd(8, kZ), {c(kVcOne)});
+            }
+            b.op(Opcode::Dp3, rd(9, kX), {r(1), r(8)});
+            b.op(Opcode::Add, rd(9, kX), {r(9, kSwizzleX), r(9, kSwizzleX)});
+            b.op(Opcode::Mad, o_t(kXYZ), {negated(r(9, kSwizzleX)), r(1), r(8)});
+        }
+        b.op(Opcode::Mov, o_t(kW), {c(kVcOne)});
     }
     const auto o_fog = dst(RegisterType::RastOut, 1);  // oFog: a scalar, no write mask
     if (vertex_fog) {

@@ -202,6 +202,34 @@ TEST(FixedFunctionDraw, SpotLightPenumbra) {
     EXPECT_EQ(pixel(outside, 1, 1), 0xFF000000u);
 }
 
+TEST(FixedFunctionDraw, GeneratedTextureCoordinates) {
+    // A 2x1 texture, POINT: u < 0.5 reads the left texel (red), u >= 0.5 the right (green), with
+    // WRAP addressing. Stage 0 SELECTARG1 TEXTURE with TEXCOORDINDEX generating u from camera
+    // space (identity transforms, LIGHTING off, the vertex has no texture coordinates).
+    const auto u_of = [](const std::string& tci, const std::string& body) {
+        const Outcome o = replay_text(
+            "CreateTexture tex 2 1 1 A8R8G8B8\nLockRect tex 0 u8[ 0 0 255 255  0 255 0 255 ]\nSetTexture 0 tex\n"
+            "SetSamplerState 0 MINFILTER POINT\nSetSamplerState 0 MAGFILTER POINT\n"
+            "SetRenderState LIGHTING FALSE\nSetRenderState LOCALVIEWER FALSE\n"
+            "SetTextureStageState 0 COLOROP SELECTARG1\nSetTextureStageState 0 TEXCOORDINDEX " + tci + "\n" + body);
+        expect_no_diagnostics(o.result);
+        return o;
+    };
+    constexpr uint32_t kRed = 0xFFFF0000u, kGreen = 0xFF00FF00u;
+    // CAMERASPACENORMAL: u = n.x: 0.8 -> green, 0.2 -> red.
+    EXPECT_EQ(pixel(u_of("{ CAMERASPACENORMAL 0 }", lit_quad(0.8f, 0, -0.6f)), 1, 1), kGreen);
+    EXPECT_EQ(pixel(u_of("{ CAMERASPACENORMAL 0 }", lit_quad(0.2f, 0, -0.98f)), 1, 1), kRed);
+    // CAMERASPACEPOSITION: u = x, from -1 (left edge) to 1: pixel column 3 (x = 0.75) green,
+    // column 0 (x = -0.75, wrapped to 0.25) red.
+    const Outcome position = u_of("{ CAMERASPACEPOSITION 0 }", lit_quad(0, 0, -1));
+    EXPECT_EQ(pixel(position, 3, 1), kGreen);
+    EXPECT_EQ(pixel(position, 0, 1), kRed);
+    // CAMERASPACEREFLECTIONVECTOR, LOCALVIEWER off: I = (0, 0, 1), N = (0.6, 0, -0.8): N.I = -0.8,
+    // R = I + 1.6 N = (0.96, 0, -0.28) -> green; N = (-0.6, 0, -0.8): R.x = -0.96 -> 0.04 -> red.
+    EXPECT_EQ(pixel(u_of("{ CAMERASPACEREFLECTIONVECTOR 0 }", lit_quad(0.6f, 0, -0.8f)), 2, 2), kGreen);
+    EXPECT_EQ(pixel(u_of("{ CAMERASPACEREFLECTIONVECTOR 0 }", lit_quad(-0.6f, 0, -0.8f)), 2, 2), kRed);
+}
+
 TEST(FixedFunctionDraw, VertexFogFactorAtAKnownDepth) {
     // Camera-space z = 0.25 everywhere (identity transforms), white vertices, FOGCOLOR blue.
     // LINEAR start 0, end 1: f = (1 - 0.25) / 1 = 0.75: R = G = 0.75 -> 191.25 -> 0xBF, B = 1.

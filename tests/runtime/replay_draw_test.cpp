@@ -135,7 +135,7 @@ TEST(ReplayDraw, RefusedDrawsKeepTheirLineAndTheSurface) {
         "SetStreamSource 0 vb 0 12\n"                      // 21
         "DrawPrimitive TRIANGLELIST 0 2\n"                 // 22: 6 vertices, the buffer holds 3
         "SetVertexShader NULL\n"                           // 23
-        "SetTextureStageState 0 TEXCOORDINDEX { CAMERASPACENORMAL 0 }\n"  // 24
+        "SetTextureStageState 0 TEXCOORDINDEX { SPHEREMAP 0 }\n"          // 24
         "DrawPrimitiveUP TRIANGLESTRIP 2 12 f32[ " + kQuadStrip + " ]\n"  // 25: fixed function, texgen refused
         "EndScene\n"
         "DrawPrimitiveUP TRIANGLESTRIP 2 12 f32[ " + kQuadStrip + " ]\n");  // 27: outside the scene
