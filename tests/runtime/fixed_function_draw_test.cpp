@@ -162,6 +162,29 @@ TEST(FixedFunctionDraw, DirectionalLightOnAKnownNormal) {
     EXPECT_EQ(pixel(away, 1, 2), 0xFF101010u);
 }
 
+TEST(FixedFunctionDraw, SpecularHighlightWithALocalViewer) {
+    // Directional light along +z (L = (0, 0, -1)), N = (0, 0, -1), the eye at the origin: from
+    // each corner (+-1, +-1, 0.5) the eye direction is (-+1, -+1, -0.5) / 1.5, H = norm(E + L) =
+    // norm(-+0.6667, -+0.6667, -1.3333), N.H = 1.3333 / 1.63299 = 0.81650; Power 2: 0.66667;
+    // light specular 1, material specular 0.6: 0.4 -> 102 (0x66) with SPECULARENABLE (material
+    // diffuse and ambient 0, so the specular is all there is).
+    // LOCALVIEWER off (D3D9's "Specular Lighting": H = norm((0, 0, 1) + L)): the light shining
+    // along (-0.6, 0, 0.8), L = (0.6, 0, -0.8), N = (1, 0, 0): N.L = 0.6 > 0, H = norm(0.6, 0, 0.2)
+    // = (0.94868, 0, 0.31623), N.H^2 = 0.9, 0.6 * 0.9 = 0.54 -> 137.7 -> 0x8A, the same at every
+    // vertex (with the local viewer it would differ per vertex).
+    const auto highlight = [](const char* local_viewer, const char* direction, float nx, float nz) {
+        const Outcome o = replay_text(
+            std::string("SetRenderState SPECULARENABLE TRUE\nSetRenderState LOCALVIEWER ") + local_viewer +
+            "\nSetMaterial { 0 0 0 1 } { 0 0 0 0 } { 0.6 0.6 0.6 1 } { 0 0 0 0 } 2\n"
+            "SetLight 0 DIRECTIONAL { 0 0 0 0 } { 1 1 1 1 } { 0 0 0 0 } { 0 0 0 } " + direction +
+            " 0 0 0 0 0 0 0\nLightEnable 0 TRUE\n" + lit_quad(nx, 0, nz));
+        expect_no_diagnostics(o.result);
+        return pixel(o, 1, 1);
+    };
+    EXPECT_EQ(highlight("TRUE", "{ 0 0 1 }", 0, -1), 0xFF666666u);
+    EXPECT_EQ(highlight("FALSE", "{ -0.6 0 0.8 }", 1, 0), 0xFF8A8A8Au);
+}
+
 TEST(FixedFunctionDraw, PointLightAttenuationAndRange) {
     // Point light at (0, 0, -2); the quad's corners (+-1, +-1, 0.5) are all d = sqrt(8.25) =
     // 2.87228 from it, N = (0, 0, -1): N.L = 2.5 / d = 0.87039; Atten = 1 / (0.5 + 0.25 d) =
