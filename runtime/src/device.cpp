@@ -755,6 +755,7 @@ CallResult Device::set_fvf(uint32_t fvf) {
     if (fvf == 0) {
         // D3D9 accepts SetFVF(0) and leaves the declaration as it was.
         fixed_function_.fvf = 0;
+        select_binding([](StateSelection& s, uint32_t) { s.fvf = true; }, 0);
         return {};
     }
     FvfLayout layout = fvf_layout(fvf);
@@ -764,6 +765,7 @@ CallResult Device::set_fvf(uint32_t fvf) {
     declaration->elements = std::move(layout.elements);
     declaration_ = std::move(declaration);
     fixed_function_.fvf = fvf;
+    select_binding([](StateSelection& s, uint32_t) { s.declaration = s.fvf = true; }, 0);
     return {};
 }
 
@@ -780,6 +782,7 @@ CallResult Device::set_transform(uint32_t state, const Matrix4& matrix) {
     Matrix4* target = fixed_function_.transform(state);
     if (!target) return CallResult::fail(transform_refusal("SetTransform", state));
     *target = matrix;
+    select_binding([](StateSelection& s, uint32_t selected) { s.transforms.set(transform_slot(selected)); }, state);
     return {};
 }
 
@@ -787,27 +790,33 @@ CallResult Device::multiply_transform(uint32_t state, const Matrix4& matrix) {
     Matrix4* target = fixed_function_.transform(state);
     if (!target) return CallResult::fail(transform_refusal("MultiplyTransform", state));
     *target = multiply(matrix, *target);
+    select_binding([](StateSelection& s, uint32_t selected) { s.transforms.set(transform_slot(selected)); }, state);
     return {};
 }
 
 CallResult Device::set_material(const Material& material) {
     fixed_function_.material = material;
+    select_binding([](StateSelection& s, uint32_t) { s.material = true; }, 0);
     return {};
 }
 
 CallResult Device::set_light(uint32_t index, const Light& light) {
     if (auto refused = fixed_function_.set_light(index, light)) return CallResult::fail("SetLight: " + *refused);
+    select_binding([](StateSelection& s, uint32_t) { s.lights = true; }, 0);
     return {};
 }
 
 CallResult Device::light_enable(uint32_t index, bool enable) {
     if (auto refused = fixed_function_.light_enable(index, enable)) return CallResult::fail("LightEnable: " + *refused);
+    select_binding([](StateSelection& s, uint32_t) { s.lights = true; }, 0);
     return {};
 }
 
 CallResult Device::set_texture_stage_state(uint32_t stage, uint32_t type, uint32_t value) {
     if (auto refused = fixed_function_.set_texture_stage_state(stage, type, value))
         return CallResult::fail("SetTextureStageState: " + *refused);
+    select_binding([](StateSelection& s, uint32_t packed) { s.stage_states[packed >> 8].set(packed & 0xFF); },
+                   stage << 8 | type);
     return {};
 }
 

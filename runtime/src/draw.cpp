@@ -11,13 +11,18 @@
 #include <atomic>
 #include <bit>
 #include <chrono>
+#include <map>
+#include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "compiled_shaders.h"
 #include "device_internal.h"
+#include "fixed_function_programs.h"
 #include "worker_pool.h"
+#include "sm2/isa/validator.h"
 #include "sm2/runtime/interpolation.h"
 #include "sm2/runtime/output_merger.h"
 #include "sm2/runtime/rasterizer.h"
@@ -282,6 +287,40 @@ void run_tiles(const PixelPipeline& pipe, std::span<const PrimitiveSetup> setups
     }
 }
 
+// The engine's shader for a generated fixed-function program, from `cache` when a draw already
+// generated the same program. Null, with `error`, when the program fails validation (a generator
+// bug, reported rather than run). Internal programs may pass vs_2_0/ps_2_0's slot counts.
+std::shared_ptr<Device::ShaderObject> fixed_function_shader(
+    std::map<std::string, std::shared_ptr<Device::ShaderObject>>& cache, FixedFunctionProgram& generated,
+    std::string& error) {
+    if (auto it = cache.find(generated.key); it != cache.end()) return it->second;
+    isa::ValidationOptions validation;
+    validation.max_instruction_slots = 512;
+    const auto violations = isa::validate(*generated.program, validation);
+    if (!violations.empty()) {
+        error = "generated fixed-function program: " + violations.front().message;
+        return nullptr;
+    }
+    auto object = std::make_shared<Device::ShaderObject>();
+    if (generated.program->version.is_vertex()) object->inputs = shader_inputs(*generated.program);
+    auto created = emu::Shader::create(std::move(*generated.program));
+    if (!created.shader) {
+        error = "generated fixed-function program: " + created.error;
+        return nullptr;
+    }
+    object->shader.emplace(std::move(*created.shader));
+    return cache.emplace(generated.key, std::move(object)).first->second;
+}
+
+std::optional<isa::TextureType> isa_texture_type(TextureType type) {
+    switch (type) {
+    case TextureType::Texture2D: return isa::TextureType::Texture2D;
+    case TextureType::Cube: return isa::TextureType::Cube;
+    case TextureType::Volume: return isa::TextureType::Volume;
+    }
+    return std::nullopt;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -290,8 +329,6 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
                             std::span<const VertexStream> streams) {
     if (!in_scene_) return CallResult::fail("draw outside BeginScene/EndScene");
     if (!declaration_) return CallResult::fail("no vertex declaration is set");
-    if (!vertex_shader_)
-        return CallResult::fail("no vertex shader is set (fixed-function vertex processing is not emulated)");
     if (options_.precision.precision == emu::Precision::Fp64)
         return CallResult::fail("the fp64 reference precision is for single shaders (sm2 run), not draws");
 
@@ -318,9 +355,52 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     auto clock = std::chrono::steady_clock::now();
     // Pipeline: the pixel shader first, since what it reads decides what the vertex shader
     // must compute.
-    ShaderObject& vs_object = *vertex_shader_->shader;
-    ShaderObject* ps_object = pixel_shader_ ? pixel_shader_->shader.get() : nullptr;
+    // Without a shader, the fixed-function program generated from the state (its constants
+    // filled for this draw) stands in for it.
     std::string error;
+    std::shared_ptr<ShaderObject> ff_vs, ff_ps;
+    std::vector<std::array<float, 4>> ff_vs_constants, ff_ps_constants;
+    if (!vertex_shader_) {
+        const auto state = [&](uint32_t id, uint32_t fallback) {
+            const auto it = other_render_states_.find(id);
+            return it != other_render_states_.end() ? it->second : fallback;
+        };
+        VertexProcessingStates states;
+        states.lighting = state(137, 1) != 0;  // D3DRS_LIGHTING
+        states.ambient = state(139, 0);
+        states.color_vertex = state(141, 1) != 0;
+        states.local_viewer = state(142, 1) != 0;
+        states.normalize_normals = state(143, 0) != 0;
+        states.diffuse_source = state(145, 1);
+        states.specular_source = state(146, 2);
+        states.ambient_source = state(147, 0);
+        states.emissive_source = state(148, 0);
+        states.vertex_blend = state(151, 0);
+        auto generated = fixed_function_vertex_program(fixed_function_, render_state_, states, viewport_,
+                                                       declaration_->elements);
+        if (!generated.program) return CallResult::fail(generated.error);
+        ff_vs = fixed_function_shader(fixed_function_programs_, generated, error);
+        if (!ff_vs) return CallResult::fail(error);
+        ff_vs_constants = std::move(generated.constants);
+        ff_vs_constants.resize(kMaxVertexShaderConstantsF, {0.0f, 0.0f, 0.0f, 0.0f});
+    }
+    if (!pixel_shader_) {
+        std::array<std::optional<isa::TextureType>, kMaxTextureStages> stage_textures{};
+        for (unsigned s = 0; s < kMaxTextureStages; ++s)
+            if (textures_[s] && textures_[s]->kind == Resource::Kind::Texture)
+                stage_textures[s] = isa_texture_type(textures_[s]->texture.type());
+        auto generated = fixed_function_pixel_program(fixed_function_, render_state_, stage_textures);
+        if (!generated.program) return CallResult::fail(generated.error);
+        ff_ps = fixed_function_shader(fixed_function_programs_, generated, error);
+        if (!ff_ps) return CallResult::fail(error);
+        ff_ps_constants = std::move(generated.constants);
+        ff_ps_constants.resize(kMaxPixelShaderConstantsF, {0.0f, 0.0f, 0.0f, 0.0f});
+    }
+    ShaderObject& vs_object = vertex_shader_ ? *vertex_shader_->shader : *ff_vs;
+    ShaderObject* ps_object = pixel_shader_ ? pixel_shader_->shader.get() : ff_ps.get();
+    const emu::StaticFlowConstants no_flow{};
+    const emu::StaticFlowConstants& vs_flow = vertex_shader_ ? vs_flow_ : no_flow;
+    const emu::StaticFlowConstants& ps_flow = pixel_shader_ ? ps_flow_ : no_flow;
     OutputMergerState merger = output_merger_state(render_state_);
     if (!targets.depth_stencil) merger.depth_stencil.depth_enable = merger.depth_stencil.stencil_enable = false;
     if (targets.depth_stencil && targets.depth_stencil->info().stencil_bits == 0) merger.depth_stencil.stencil_enable = false;
@@ -330,7 +410,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     ps_outputs |= output_bit(slot::kDepth);
     ShaderObject::Lowered* ps_entry = nullptr;
     if (ps_object) {
-        ps_entry = lowered_for(*ps_object, ps_flow_, ps_outputs, options_.precision, stats_, error);
+        ps_entry = lowered_for(*ps_object, ps_flow, ps_outputs, options_.precision, stats_, error);
         if (!ps_entry) return CallResult::fail("pixel shader: " + error);
     }
     const emu::Executable* ps = ps_entry ? &ps_entry->executable : nullptr;
@@ -340,7 +420,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
                         (render_state_.fill_mode == FillMode::Point && type >= PrimitiveType::TriangleList);
     uint32_t vs_outputs = vs_outputs_for(varyings);
     if (points) vs_outputs |= output_bit(slot::kPointSize);
-    ShaderObject::Lowered* vs_entry = lowered_for(vs_object, vs_flow_, vs_outputs, options_.precision, stats_, error);
+    ShaderObject::Lowered* vs_entry = lowered_for(vs_object, vs_flow, vs_outputs, options_.precision, stats_, error);
     if (!vs_entry) return CallResult::fail("vertex shader: " + error);
     const emu::Executable* vs = &vs_entry->executable;
 
@@ -361,7 +441,8 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     const bool writes_point_size = (vs->components_written()[slot::kPointSize] & 1u) != 0;
     std::vector<ClipVertex> shaded(unique.vertices.size());
     const std::string fetch_error =
-        shade_vertices(*plan.plan, streams, unique.vertices, *vs, vs_compiled, vs->bind_constants(vs_f_),
+        shade_vertices(*plan.plan, streams, unique.vertices, *vs, vs_compiled,
+                       vs->bind_constants(vertex_shader_ ? vs_f_ : ff_vs_constants),
                        writes_point_size, shaded);
     if (!fetch_error.empty()) return CallResult::fail("vertex fetch: " + fetch_error);
 
@@ -386,7 +467,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     pipe.ps_compiled = ps_compiled;
     emu::ConstantFile ps_constants;
     if (ps) {
-        ps_constants = ps->bind_constants(ps_f_);
+        ps_constants = ps->bind_constants(pixel_shader_ ? ps_f_ : ff_ps_constants);
         pipe.ps_constants = &ps_constants;
     }
     pipe.ps_varyings = varyings;

@@ -41,6 +41,27 @@ constexpr std::initializer_list<uint32_t> kVertexRenderStates = {
     180, 181, 182, 183, 184,
 };
 
+// Copies the selected fixed-function parts from `from` to `to` (capture and apply alike).
+void capture_fixed_function(const Device::StateSelection& selection, const FixedFunctionState& from,
+                            FixedFunctionState& to) {
+    for (unsigned t = 0; t < kMaxTextureStages; ++t)
+        for (uint32_t type = 0; type < kTextureStageStateCount; ++type)
+            if (selection.stage_states[t].test(type)) to.stages[t][type] = from.stages[t][type];
+    const auto& transforms = selection.transforms;
+    if (transforms.test(transform_slot(kTransformView))) to.view = from.view;
+    if (transforms.test(transform_slot(kTransformProjection))) to.projection = from.projection;
+    for (uint32_t t = 0; t < kMaxTextureStages; ++t)
+        if (transforms.test(transform_slot(kTransformTexture0 + t))) to.texture[t] = from.texture[t];
+    for (uint32_t w = 0; w < kMaxWorldMatrices; ++w)
+        if (transforms.test(transform_slot(kTransformWorld + w))) to.world[w] = from.world[w];
+    if (selection.material) to.material = from.material;
+    if (selection.lights) {
+        to.lights = from.lights;
+        to.enabled_lights = from.enabled_lights;
+    }
+    if (selection.fvf) to.fvf = from.fvf;
+}
+
 CallResult no_block(const char* call, const std::string& name) {
     return CallResult::fail(std::string(call) + ": '" + name + "' is not a state block");
 }
@@ -65,6 +86,11 @@ void Device::StateSelection::merge(const StateSelection& other) {
     indices |= other.indices;
     viewport |= other.viewport;
     scissor |= other.scissor;
+    for (unsigned t = 0; t < kMaxTextureStages; ++t) stage_states[t] |= other.stage_states[t];
+    transforms |= other.transforms;
+    material |= other.material;
+    lights |= other.lights;
+    fvf |= other.fvf;
 }
 
 Device::StateSelection Device::StateSelection::for_type(StateBlockType type) {
@@ -79,6 +105,7 @@ Device::StateSelection Device::StateSelection::for_type(StateBlockType type) {
         s.ps_float.set();
         s.ps_int.set();
         s.ps_bool.set();
+        for (auto& stage : s.stage_states) stage.set();
     }
     if (all || type == StateBlockType::VertexState) {
         for (uint32_t id : kVertexRenderStates) s.render_states.set(id);
@@ -87,6 +114,9 @@ Device::StateSelection Device::StateSelection::for_type(StateBlockType type) {
         s.vs_float.set();
         s.vs_int.set();
         s.vs_bool.set();
+        for (auto& stage : s.stage_states) stage.set(kTssTexCoordIndex).set(kTssTextureTransformFlags);
+        s.lights = true;
+        s.fvf = true;
     }
     if (all) {
         // Only D3DSBT_ALL ("Saving All Device States"): the textures, vertex streams, index
@@ -97,6 +127,8 @@ Device::StateSelection Device::StateSelection::for_type(StateBlockType type) {
         s.viewport = true;
         s.scissor = true;
         s.clip_planes.set();
+        s.transforms.set();
+        s.material = true;
     }
     return s;
 }
@@ -156,6 +188,7 @@ void Device::capture(const StateSelection& selection, StateSnapshot& snapshot) c
     if (selection.indices) snapshot.indices = indices_;
     if (selection.viewport) snapshot.viewport = viewport_;
     if (selection.scissor) snapshot.scissor = scissor_;
+    capture_fixed_function(selection, fixed_function_, snapshot.fixed_function);
 }
 
 void Device::apply(const StateSelection& selection, const StateSnapshot& snapshot) {
@@ -193,6 +226,7 @@ void Device::apply(const StateSelection& selection, const StateSnapshot& snapsho
     if (selection.indices) indices_ = snapshot.indices;
     if (selection.viewport) viewport_ = snapshot.viewport;
     if (selection.scissor) scissor_ = snapshot.scissor;
+    capture_fixed_function(selection, snapshot.fixed_function, fixed_function_);
 }
 
 CallResult Device::create_state_block(const std::string& name, StateBlockType type) {

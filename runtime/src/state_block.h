@@ -15,6 +15,15 @@ namespace sm2::runtime {
 
 constexpr unsigned kRenderStateSlots = 256;  // D3DRENDERSTATETYPE values are below 256
 constexpr unsigned kSamplerStateSlots = 14;  // D3DSAMPLERSTATETYPE 1..13
+// Transforms by slot: VIEW, PROJECTION, TEXTURE0..7, WORLDMATRIX(0..255).
+constexpr unsigned kTransformSlots = 2 + kMaxTextureStages + kMaxWorldMatrices;
+// The slot of a D3DTRANSFORMSTATETYPE FixedFunctionState::transform accepts.
+[[nodiscard]] constexpr unsigned transform_slot(uint32_t state) {
+    if (state == kTransformView) return 0;
+    if (state == kTransformProjection) return 1;
+    if (state >= kTransformWorld) return 2 + kMaxTextureStages + (state - kTransformWorld);
+    return 2 + (state - kTransformTexture0);
+}
 
 struct Device::StateSelection {
     std::bitset<kRenderStateSlots> render_states;
@@ -28,10 +37,12 @@ struct Device::StateSelection {
     std::bitset<kMaxConstantsB> vs_bool, ps_bool;
     bool vertex_shader = false, pixel_shader = false, declaration = false, indices = false;
     bool viewport = false, scissor = false;
-    // FIXED-FUNCTION STATE GOES HERE: the transforms, material, lights (ALL; lights VERTEXSTATE
-    // too), texture stage states (PIXELSTATE; TEXCOORDINDEX and TEXTURETRANSFORMFLAGS
-    // VERTEXSTATE too) and the FVF (with the declaration), with a line each in
-    // select_for_type/merge and in Device::capture/apply (state_block.cpp).
+    // Fixed-function state: the transforms and material (ALL), the lights (ALL and VERTEXSTATE;
+    // all of them, with the enabled list, as one state), texture stage states (PIXELSTATE;
+    // TEXCOORDINDEX and TEXTURETRANSFORMFLAGS VERTEXSTATE too) and the FVF (with the declaration).
+    std::array<std::bitset<kTextureStageStateCount>, kMaxTextureStages> stage_states;
+    std::bitset<kTransformSlots> transforms;  // transform_slot() order
+    bool material = false, lights = false, fvf = false;
 
     void merge(const StateSelection& other);
     [[nodiscard]] static StateSelection for_type(StateBlockType type);
@@ -49,6 +60,7 @@ struct Device::StateSnapshot {
     std::shared_ptr<Resource> vertex_shader, pixel_shader, declaration, indices;
     Viewport viewport{};
     PixelRect scissor{};
+    FixedFunctionState fixed_function;  // the selected parts
 };
 
 struct StateBlockObject {

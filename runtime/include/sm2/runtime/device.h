@@ -349,6 +349,8 @@ private:
     // Render states accepted but not modelled by RenderState (fixed-function, tessellation):
     // their last DWORDs, so that state blocks capture and apply them like the others.
     std::map<uint32_t, uint32_t> other_render_states_;
+    // Fixed-function programs generated for draws without shaders, by program text (their key).
+    std::map<std::string, std::shared_ptr<ShaderObject>> fixed_function_programs_;
     // BeginStateBlock ... EndStateBlock: what the calls in between set.
     std::unique_ptr<StateSelection> recording_;
     std::shared_ptr<StateBlockObject> state_before_recording_;  // given back at EndStateBlock

@@ -1,0 +1,651 @@
+// Fixed-function processing as generated programs (fixed_function_programs.h). The formulas are
+// D3D9's (docs/fixed-function.md lists each with its source); only SM2 operations are used, so
+// the engine's rules (precision, saturation, sampling) apply to them as to any shader.
+#include "fixed_function_programs.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sm2::runtime {
+
+namespace {
+
+using isa::Opcode;
+using isa::RegisterType;
+using isa::SourceModifier;
+
+constexpr uint8_t kXYZ = 0x7, kW = 0x8, kXY = 0x3, kZ = 0x4;
+constexpr uint8_t kSwizzleW = 0xFF, kSwizzleZWZW = 0xEE;
+
+isa::SourceParameter src(RegisterType type, unsigned index, uint8_t swizzle = isa::kSwizzleIdentity,
+                         SourceModifier modifier = SourceModifier::None) {
+    isa::SourceParameter p;
+    p.type = type;
+    p.index = static_cast<uint16_t>(index);
+    p.swizzle = swizzle;
+    p.modifier = modifier;
+    return p;
+}
+isa::SourceParameter negated(isa::SourceParameter p) {
+    p.modifier = p.modifier == SourceModifier::Negate ? SourceModifier::None : SourceModifier::Negate;
+    return p;
+}
+isa::SourceParameter alpha_of(isa::SourceParameter p) {
+    p.swizzle = isa::replicate_swizzle(isa::swizzle_component(p.swizzle, 3));
+    return p;
+}
+isa::DestinationParameter dst(RegisterType type, unsigned index, uint8_t mask = isa::kMaskAll, bool saturate = false) {
+    isa::DestinationParameter d;
+    d.type = type;
+    d.index = static_cast<uint16_t>(index);
+    d.write_mask = mask;
+    d.saturate = saturate;
+    return d;
+}
+
+// Builds a Program and, beside it, a text of every field that decides it: the cache key.
+class ProgramBuilder {
+public:
+    explicit ProgramBuilder(isa::ShaderType type) { program_.version = isa::ShaderVersion{type, 2, 0}; }
+
+    void dcl_input(RegisterType type, unsigned reg, isa::DeclUsage usage = isa::DeclUsage::Position,
+                   uint8_t usage_index = 0, isa::TextureType texture = isa::TextureType::Unknown) {
+        isa::Instruction ins;
+        ins.opcode = Opcode::Dcl;
+        ins.dest = dst(type, reg);
+        ins.declaration.usage = usage;
+        ins.declaration.usage_index = usage_index;
+        ins.declaration.texture_type = texture;
+        add(std::move(ins));
+    }
+    void op(Opcode opcode, isa::DestinationParameter d, std::initializer_list<isa::SourceParameter> sources,
+            uint8_t control = 0) {
+        isa::Instruction ins;
+        ins.opcode = opcode;
+        ins.control = control;
+        ins.dest = d;
+        ins.sources = sources;
+        add(std::move(ins));
+    }
+    FixedFunctionProgram finish(std::vector<std::array<float, 4>> constants) && {
+        FixedFunctionProgram out;
+        out.program = std::move(program_);
+        out.key = std::move(key_);
+        out.constants = std::move(constants);
+        return out;
+    }
+
+private:
+    void add(isa::Instruction ins) {
+        key_ += std::to_string(static_cast<unsigned>(ins.opcode)) + ':' + std::to_string(ins.control);
+        const auto& d = *ins.dest;
+        key_ += ' ' + std::to_string(static_cast<unsigned>(d.type)) + '.' + std::to_string(d.index) + '.' +
+                std::to_string(d.write_mask) + (d.saturate ? "s" : "");
+        for (const auto& s : ins.sources)
+            key_ += ' ' + std::to_string(static_cast<unsigned>(s.type)) + '.' + std::to_string(s.index) + '.' +
+                    std::to_string(s.swizzle) + '.' + std::to_string(static_cast<unsigned>(s.modifier));
+        if (ins.opcode == Opcode::Dcl)
+            key_ += ' ' + std::to_string(static_cast<unsigned>(ins.declaration.usage)) + '.' +
+                    std::to_string(ins.declaration.usage_index) + '.' +
+                    std::to_string(static_cast<unsigned>(ins.declaration.texture_type));
+        key_ += '\n';
+        program_.instructions.push_back(std::move(ins));
+    }
+    isa::Program program_;
+    std::string key_;
+};
+
+FixedFunctionProgram refused(std::string why) {
+    FixedFunctionProgram out;
+    out.error = std::move(why);
+    return out;
+}
+
+std::array<float, 4> color_of(uint32_t argb) {
+    return {static_cast<float>(argb >> 16 & 0xFF) / 255.0f, static_cast<float>(argb >> 8 & 0xFF) / 255.0f,
+            static_cast<float>(argb & 0xFF) / 255.0f, static_cast<float>(argb >> 24) / 255.0f};
+}
+
+// D3DDECLUSAGE values of the elements the vertex program reads.
+constexpr uint8_t kUsagePosition = 0, kUsageNormal = 3, kUsageTexCoord = 5, kUsagePositionT = 9, kUsageColor = 10;
+
+// Vertex program input registers.
+constexpr unsigned kInPosition = 0, kInDiffuse = 1, kInSpecular = 2, kInTexCoord0 = 3, kInNormal = 11;
+// Vertex program constants.
+constexpr unsigned kVcTransform = 0;       // c0..c3: (world x view x projection) transposed, or
+                                           // c0: the XYZRHW screen -> clip mapping
+constexpr unsigned kVcDefaultDiffuse = 4;  // (1, 1, 1, 1)
+constexpr unsigned kVcZero = 5;            // (0, 0, 0, 0), also the default specular
+constexpr unsigned kVcOne = 6;             // (1, 1, 1, 1)
+constexpr unsigned kVcWorldView = 7;       // c7..c10: world x view transposed (camera space)
+constexpr unsigned kVcNormal = 11;         // c11..c13: rows of the inverse of world x view's 3x3
+constexpr unsigned kVcGlobalAmbient = 14;  // AMBIENT
+constexpr unsigned kVcMaterial = 15;       // c15..c18: material diffuse, ambient, specular, emissive
+constexpr unsigned kVcPower = 19;          // (power, 0, 0, 0)
+constexpr unsigned kVcFog = 20;            // (FOGEND, 1 / (FOGEND - FOGSTART), FOGDENSITY, log2 e)
+constexpr unsigned kVcLightFirst = 21;     // kLightConstants per enabled light:
+constexpr unsigned kLightDiffuse = 0, kLightSpecular = 1, kLightAmbient = 2,
+                   kLightVector = 3,       // directional: direction to the light; point: position (camera space)
+                   kLightAttenuation = 4,  // (attenuation0, 1, 2, range)
+                   kLightSpotAxis = 5,     // spot: the reversed direction (camera space, normalized)
+                   kLightSpotCone = 6,     // spot: (cos(theta/2), cos(phi/2), 1 / (cos(theta/2) - cos(phi/2)), falloff)
+                   kLightConstants = 7;
+
+std::array<float, 4> rgba(const ColorValue& c) { return {c.r, c.g, c.b, c.a}; }
+
+// The inverse of a row-major 3x3 matrix (zero for a singular one, as a degenerate world has no
+// meaningful normals).
+std::array<float, 9> inverse3(const std::array<float, 9>& m) {
+    const double a = m[0], b = m[1], c = m[2], d = m[3], e = m[4], f = m[5], g = m[6], h = m[7], i = m[8];
+    const double det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g);
+    if (det == 0) return {};
+    const double k = 1.0 / det;
+    return {static_cast<float>((e * i - f * h) * k), static_cast<float>((c * h - b * i) * k),
+            static_cast<float>((b * f - c * e) * k), static_cast<float>((f * g - d * i) * k),
+            static_cast<float>((a * i - c * g) * k), static_cast<float>((c * d - a * f) * k),
+            static_cast<float>((d * h - e * g) * k), static_cast<float>((b * g - a * h) * k),
+            static_cast<float>((a * e - b * d) * k)};
+}
+
+}  // namespace
+
+FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff, const RenderState& rs,
+                                                   const VertexProcessingStates& states, const Viewport& viewport,
+                                                   std::span<const VertexElement> declaration) {
+    bool has_position = false, pretransformed = false, has_diffuse = false, has_specular = false, has_normal = false;
+    std::array<bool, 8> has_texcoord{};
+    for (const auto& e : declaration) {
+        if (e.usage == kUsagePosition && e.usage_index == 0) has_position = true;
+        if (e.usage == kUsagePositionT && e.usage_index == 0) has_position = pretransformed = true;
+        if (e.usage == kUsageNormal && e.usage_index == 0) has_normal = true;
+        if (e.usage == kUsageColor && e.usage_index == 0) has_diffuse = true;
+        if (e.usage == kUsageColor && e.usage_index == 1) has_specular = true;
+        if (e.usage == kUsageTexCoord && e.usage_index < 8) has_texcoord[e.usage_index] = true;
+    }
+    if (!has_position) return refused("fixed-function vertex processing: the declaration has no POSITION or POSITIONT 0");
+    const bool lighting = states.lighting && !pretransformed;
+    if (!pretransformed && states.vertex_blend != 0) return refused("fixed-function vertex blending is not emulated");
+    const bool vertex_fog =
+        rs.fog_enable && rs.fog_table_mode == FogMode::None && !pretransformed && rs.fog_vertex_mode != FogMode::None;
+    if (vertex_fog && rs.range_fog_enable) return refused("fixed-function range fog (RANGEFOGENABLE) is not emulated yet");
+    std::vector<const Light*> lights;
+    if (lighting)
+        for (uint32_t index : ff.enabled_lights) {
+            lights.push_back(&ff.lights.at(index));
+        }
+    for (uint32_t source : {states.diffuse_source, states.specular_source, states.ambient_source, states.emissive_source})
+        if (lighting && source > 2)
+            return refused("fixed-function lighting: material source " + std::to_string(source) +
+                           " is not MATERIAL, COLOR1 or COLOR2");
+    // D3DTSS_TCI_* texture coordinate generation: PASSTHRU 0, CAMERASPACENORMAL 1,
+    // CAMERASPACEPOSITION 2, CAMERASPACEREFLECTIONVECTOR 3 (SPHEREMAP 4 is refused).
+    constexpr uint32_t kTciPassThru = 0, kTciNormal = 1, kTciPosition = 2, kTciReflection = 3, kTciSphereMap = 4;
+    bool generates_from_normal = false, generates_from_position = false;
+    for (unsigned s = 0; s < kMaxTextureStages; ++s) {
+        const uint32_t tci = ff.stages[s][kTssTexCoordIndex];
+        const uint32_t mode = tci >> 16;
+        if (mode == kTciSphereMap)
+            return refused("texture stage " + std::to_string(s) +
+                           ": TEXCOORDINDEX SPHEREMAP texture coordinate generation is not emulated yet");
+        if (mode > kTciSphereMap)
+            return refused("texture stage " + std::to_string(s) + ": TEXCOORDINDEX mode " + std::to_string(mode) +
+                           " is not a D3DTSS_TCI mode");
+        if (mode != kTciPassThru && pretransformed)
+            return refused("texture stage " + std::to_string(s) +
+                           ": TEXCOORDINDEX texture coordinate generation needs untransformed (XYZ) vertices");
+        generates_from_normal |= mode == kTciNormal || mode == kTciReflection;
+        generates_from_position |= mode == kTciPosition || mode == kTciReflection;
+        if ((tci & 0xFFFF) >= 8)
+            return refused("texture stage " + std::to_string(s) + ": TEXCOORDINDEX " + std::to_string(tci & 0xFFFF) +
+                           " is not a texture coordinate set (0..7)");
+        if (ff.stages[s][kTssTextureTransformFlags] != 0 && !pretransformed)
+            return refused("texture stage " + std::to_string(s) +
+                           ": TEXTURETRANSFORMFLAGS (texture transforms, projection) are not emulated yet");
+    }
+
+    ProgramBuilder b(isa::ShaderType::Vertex);
+    const auto in = [](unsigned r, uint8_t swizzle = isa::kSwizzleIdentity) { return src(RegisterType::Input, r, swizzle); };
+    const auto c = [](unsigned r, uint8_t swizzle = isa::kSwizzleIdentity) { return src(RegisterType::Const, r, swizzle); };
+    const auto r = [](unsigned n, uint8_t swizzle = isa::kSwizzleIdentity) { return src(RegisterType::Temp, n, swizzle); };
+    const auto rd = [](unsigned n, uint8_t mask = isa::kMaskAll) { return dst(RegisterType::Temp, n, mask); };
+    constexpr uint8_t kX = 0x1, kY = 0x2, kSwizzleX = 0x00, kSwizzleY = 0x55, kSwizzleZ = 0xAA;
+    b.dcl_input(RegisterType::Input, kInPosition, pretransformed ? isa::DeclUsage::PositionT : isa::DeclUsage::Position);
+    if (has_diffuse) b.dcl_input(RegisterType::Input, kInDiffuse, isa::DeclUsage::Color, 0);
+    if (has_specular) b.dcl_input(RegisterType::Input, kInSpecular, isa::DeclUsage::Color, 1);
+    for (unsigned t = 0; t < 8; ++t)
+        if (has_texcoord[t])
+            b.dcl_input(RegisterType::Input, kInTexCoord0 + t, isa::DeclUsage::TexCoord, static_cast<uint8_t>(t));
+    const bool needs_normal = lighting || generates_from_normal;
+    if (needs_normal && has_normal) b.dcl_input(RegisterType::Input, kInNormal, isa::DeclUsage::Normal, 0);
+
+    std::vector<std::array<float, 4>> constants(kVcLightFirst + kLightConstants * lights.size(),
+                                                std::array<float, 4>{0, 0, 0, 0});
+    constants[kVcDefaultDiffuse] = {1, 1, 1, 1};
+    constants[kVcOne] = {1, 1, 1, 1};
+    const auto o_pos = [](uint8_t mask) { return dst(RegisterType::RastOut, 0, mask); };
+    const Matrix4 world_view = multiply(ff.world[0], ff.view);
+    if (pretransformed) {
+        // XYZRHW: x, y are render-target pixels, z the depth, rhw 1/w. The clip-space position
+        // ((x - X) 2/W - 1, 1 - (y - Y) 2/H, z, 1) w with w = 1/rhw is what the viewport mapping
+        // (x_s = X + (x/w + 1) W/2, y_s = Y + (1 - y/w) H/2) turns back into exactly x, y, and
+        // the rasterizer's 1/w into rhw (perspective-correct interpolation, as D3D9 does).
+        const float w = static_cast<float>(std::max<uint32_t>(viewport.width, 1));
+        const float h = static_cast<float>(std::max<uint32_t>(viewport.height, 1));
+        constants[kVcTransform] = {2.0f / w, -2.0f / h, -1.0f - 2.0f * static_cast<float>(viewport.x) / w,
+                                   1.0f + 2.0f * static_cast<float>(viewport.y) / h};
+        b.op(Opcode::Rcp, dst(RegisterType::Temp, 0, kW), {in(kInPosition, kSwizzleW)});
+        b.op(Opcode::Mad, dst(RegisterType::Temp, 1, kXY), {in(kInPosition), c(kVcTransform), c(kVcTransform, kSwizzleZWZW)});
+        b.op(Opcode::Mov, dst(RegisterType::Temp, 1, kZ), {in(kInPosition)});
+        b.op(Opcode::Mul, o_pos(kXYZ), {r(1), r(0, kSwizzleW)});
+        b.op(Opcode::Mov, o_pos(kW), {r(0, kSwizzleW)});
+    } else {
+        // Row vectors: p' = p (World View Projection); m4x4 takes dot products with rows c0..c3,
+        // so the constants hold the product's columns.
+        const Matrix4 wvp = multiply(world_view, ff.projection);
+        for (unsigned row = 0; row < 4; ++row)
+            for (unsigned col = 0; col < 4; ++col) {
+                constants[kVcTransform + row][col] = wvp[col * 4 + row];
+                constants[kVcWorldView + row][col] = world_view[col * 4 + row];
+            }
+        b.op(Opcode::M4x4, o_pos(isa::kMaskAll), {in(kInPosition), c(kVcTransform)});
+    }
+    // Camera-space position in r0 (lighting and fog read it).
+    if (lighting || vertex_fog || generates_from_position) b.op(Opcode::M4x4, rd(0), {in(kInPosition), c(kVcWorldView)});
+    // Camera-space normal in r1 (lighting and texgen read it): through the inverse transpose of
+    // world x view's 3x3, normalized with NORMALIZENORMALS; (0, 0, 0) when the vertex has none.
+    if (needs_normal) {
+        const std::array<float, 9> wv3{world_view[0], world_view[1], world_view[2], world_view[4], world_view[5],
+                                       world_view[6], world_view[8], world_view[9], world_view[10]};
+        const auto inv = inverse3(wv3);
+        for (unsigned j = 0; j < 3; ++j) constants[kVcNormal + j] = {inv[j * 3], inv[j * 3 + 1], inv[j * 3 + 2], 0};
+        if (has_normal) {
+            // nrm may not write its own source: the transformed normal goes through r11.
+            b.op(Opcode::M3x3, rd(states.normalize_normals ? 11 : 1, kXYZ), {in(kInNormal), c(kVcNormal)});
+            if (states.normalize_normals) b.op(Opcode::Nrm, rd(1, kXYZ), {r(11)});
+        } else {
+            b.op(Opcode::Mov, rd(1), {c(kVcZero)});
+        }
+    }
+
+    if (lighting) {
+        // D3D9 "Mathematics of Lighting" (camera space): colour = Ce + Ca (Ga + sum Atten La)
+        // + Cd sum (Atten Ld max(N.L, 0)), specular = Cs sum (Atten Ls (N.H)^P) where N.L > 0;
+        // H = norm(norm(-P) + L) with LOCALVIEWER, norm((0, 0, 1) + L) without.
+        constants[kVcGlobalAmbient] = color_of(states.ambient);
+        constants[kVcMaterial + 0] = rgba(ff.material.diffuse);
+        constants[kVcMaterial + 1] = rgba(ff.material.ambient);
+        constants[kVcMaterial + 2] = rgba(ff.material.specular);
+        constants[kVcMaterial + 3] = rgba(ff.material.emissive);
+        constants[kVcPower] = {ff.material.power, 0, 0, 0};
+        // r1 normal, r2 direction to the eye, r3 diffuse sum, r4 specular sum, r5 ambient sum.
+        if (states.local_viewer) {
+            b.op(Opcode::Nrm, rd(2, kXYZ), {r(0)});
+            b.op(Opcode::Mov, rd(2, kXYZ), {negated(r(2))});
+        } else {
+            b.op(Opcode::Mov, rd(2), {c(kVcZero)});
+            b.op(Opcode::Mov, rd(2, kZ), {c(kVcOne)});
+        }
+        for (unsigned n : {3u, 4u, 5u}) b.op(Opcode::Mov, rd(n), {c(kVcZero)});
+        for (size_t i = 0; i < lights.size(); ++i) {
+            const Light& light = *lights[i];
+            const unsigned base = kVcLightFirst + kLightConstants * static_cast<unsigned>(i);
+            constants[base + kLightDiffuse] = rgba(light.diffuse);
+            constants[base + kLightSpecular] = rgba(light.specular);
+            constants[base + kLightAmbient] = rgba(light.ambient);
+            constants[base + kLightAttenuation] = {light.attenuation0, light.attenuation1, light.attenuation2, light.range};
+            // r6.xyz direction to the light, r6.w attenuation.
+            if (light.type == LightType::Directional) {
+                // The direction the light shines, into camera space (the view matrix; D3D9
+                // light directions are in world space), reversed and normalized.
+                const Vector3 d = light.direction;
+                float v[3];
+                for (unsigned k = 0; k < 3; ++k)
+                    v[k] = -(d.x * ff.view[0 * 4 + k] + d.y * ff.view[1 * 4 + k] + d.z * ff.view[2 * 4 + k]);
+                const float length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+                const float k = length > 0 ? 1.0f / length : 0.0f;
+                constants[base + kLightVector] = {v[0] * k, v[1] * k, v[2] * k, 0};
+                b.op(Opcode::Mov, rd(6, kXYZ), {c(base + kLightVector)});
+                b.op(Opcode::Mov, rd(6, kW), {c(kVcOne, kSwizzleW)});
+            } else {
+                // Point and spot: the position into camera space; Atten = 1 / (a0 + a1 d + a2 d^2)
+                // within the range, 0 beyond it.
+                const Vector3 p = light.position;
+                std::array<float, 4> v{};
+                for (unsigned k = 0; k < 3; ++k)
+                    v[k] = p.x * ff.view[0 * 4 + k] + p.y * ff.view[1 * 4 + k] + p.z * ff.view[2 * 4 + k] + ff.view[12 + k];
+                constants[base + kLightVector] = v;
+                b.op(Opcode::Add, rd(6, kXYZ), {c(base + kLightVector), negated(r(0))});
+                b.op(Opcode::Dp3, rd(7, kW), {r(6), r(6)});                      // d^2
+                b.op(Opcode::Rsq, rd(7, kX), {r(7, kSwizzleW)});                   // 1/d
+                b.op(Opcode::Mul, rd(6, kXYZ), {r(6), r(7, kSwizzleX)});
+                b.op(Opcode::Mul, rd(7, kY), {r(7, kSwizzleW), r(7, kSwizzleX)});  // d
+                b.op(Opcode::Mad, rd(7, kZ), {c(base + kLightAttenuation, kSwizzleY), r(7, kSwizzleY),
+                                              c(base + kLightAttenuation, kSwizzleX)});
+                b.op(Opcode::Mad, rd(7, kZ), {c(base + kLightAttenuation, kSwizzleZ), r(7, kSwizzleW), r(7, kSwizzleZ)});
+                b.op(Opcode::Rcp, rd(6, kW), {r(7, kSwizzleZ)});
+                b.op(Opcode::Sge, rd(7, kZ), {c(base + kLightAttenuation, kSwizzleW), r(7, kSwizzleY)});  // d <= range
+                b.op(Opcode::Mul, rd(6, kW), {r(6, kSwizzleW), r(7, kSwizzleZ)});
+                if (light.type == LightType::Spot) {
+                    // D3D9 "Spotlight model": rho = L . -direction; 1 inside the inner cone
+                    // (rho > cos(theta/2)), 0 outside the outer one (rho <= cos(phi/2)), else
+                    // ((rho - cos(phi/2)) / (cos(theta/2) - cos(phi/2)))^falloff.
+                    const Vector3 d = light.direction;
+                    float axis[3];
+                    for (unsigned k = 0; k < 3; ++k)
+                        axis[k] = -(d.x * ff.view[0 * 4 + k] + d.y * ff.view[1 * 4 + k] + d.z * ff.view[2 * 4 + k]);
+                    const float length = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+                    const float k = length > 0 ? 1.0f / length : 0.0f;
+                    constants[base + kLightSpotAxis] = {axis[0] * k, axis[1] * k, axis[2] * k, 0};
+                    const float cos_theta = std::cos(light.theta / 2), cos_phi = std::cos(light.phi / 2);
+                    // theta >= phi: no penumbra, a step at the outer cone.
+                    const float scale = cos_theta > cos_phi ? 1.0f / (cos_theta - cos_phi) : 1e30f;
+                    constants[base + kLightSpotCone] = {cos_theta, cos_phi, scale, light.falloff};
+                    b.op(Opcode::Dp3, rd(8, kX), {r(6), c(base + kLightSpotAxis)});
+                    b.op(Opcode::Add, rd(8, kY), {r(8, kSwizzleX), negated(c(base + kLightSpotCone, kSwizzleY))});
+                    b.op(Opcode::Mul, rd(8, kY), {r(8, kSwizzleY), c(base + kLightSpotCone, kSwizzleZ)});
+                    b.op(Opcode::Max, rd(8, kY), {r(8, kSwizzleY), c(kVcZero)});
+                    b.op(Opcode::Min, rd(8, kY), {r(8, kSwizzleY), c(kVcOne)});
+                    // x^falloff, and 0 outside the cone whatever pow(0, 0) gives.
+                    b.op(Opcode::Slt, rd(8, kZ), {c(kVcZero), r(8, kSwizzleY)});
+                    b.op(Opcode::Pow, rd(8, kY), {r(8, kSwizzleY), c(base + kLightSpotCone, kSwizzleW)});
+                    b.op(Opcode::Mul, rd(8, kY), {r(8, kSwizzleY), r(8, kSwizzleZ)});
+                    b.op(Opcode::Mul, rd(6, kW), {r(6, kSwizzleW), r(8, kSwizzleY)});
+                }
+            }
+            b.op(Opcode::Dp3, rd(7, kX), {r(1), r(6)});                            // N.L
+            b.op(Opcode::Max, rd(7, kX), {r(7, kSwizzleX), c(kVcZero)});
+            b.op(Opcode::Mul, rd(8, kX), {r(7, kSwizzleX), r(6, kSwizzleW)});
+            b.op(Opcode::Mad, rd(3, kXYZ), {c(base + kLightDiffuse), r(8, kSwizzleX), r(3)});
+            b.op(Opcode::Mad, rd(5, kXYZ), {c(base + kLightAmbient), r(6, kSwizzleW), r(5)});
+            b.op(Opcode::Add, rd(8, kXYZ), {r(2), r(6)});                          // H
+            b.op(Opcode::Nrm, rd(9, kXYZ), {r(8)});
+            b.op(Opcode::Dp3, rd(9, kX), {r(1), r(9)});                            // N.H
+            b.op(Opcode::Max, rd(9, kX), {r(9, kSwizzleX), c(kVcZero)});
+            b.op(Opcode::Pow, rd(9, kX), {r(9, kSwizzleX), c(kVcPower, kSwizzleX)});
+            b.op(Opcode::Slt, rd(9, kY), {c(kVcZero), r(7, kSwizzleX)});             // N.L > 0
+            b.op(Opcode::Mul, rd(9, kX), {r(9, kSwizzleX), r(9, kSwizzleY)});
+            b.op(Opcode::Mul, rd(9, kX), {r(9, kSwizzleX), r(6, kSwizzleW)});
+            b.op(Opcode::Mad, rd(4, kXYZ), {c(base + kLightSpecular), r(9, kSwizzleX), r(4)});
+        }
+        // Material colour sources (COLORVERTEX): a vertex colour where the vertex has it.
+        const auto source = [&](uint32_t value, unsigned material) {
+            if (states.color_vertex && value == 1 && has_diffuse) return in(kInDiffuse);
+            if (states.color_vertex && value == 2 && has_specular) return in(kInSpecular);
+            return c(kVcMaterial + material);
+        };
+        const auto cd = source(states.diffuse_source, 0), ca = source(states.ambient_source, 1),
+                   cs = source(states.specular_source, 2), ce = source(states.emissive_source, 3);
+        b.op(Opcode::Add, rd(5, kXYZ), {r(5), c(kVcGlobalAmbient)});
+        b.op(Opcode::Mad, rd(5, kXYZ), {r(5), ca, ce});
+        b.op(Opcode::Mad, rd(5, kXYZ), {cd, r(3), r(5)});
+        b.op(Opcode::Mov, rd(5, kW), {cd});                                         // alpha: diffuse's
+        b.op(Opcode::Max, rd(5), {r(5), c(kVcZero)});
+        b.op(Opcode::Min, dst(RegisterType::AttrOut, 0), {r(5), c(kVcOne)});
+        b.op(Opcode::Mul, rd(4, kXYZ), {r(4), cs});
+        b.op(Opcode::Mov, rd(4, kW), {has_specular ? in(kInSpecular) : c(kVcZero)});
+        b.op(Opcode::Max, rd(4), {r(4), c(kVcZero)});
+        b.op(Opcode::Min, dst(RegisterType::AttrOut, 1), {r(4), c(kVcOne)});
+    } else {
+        // Lighting off: the vertex colours as given, D3D9's defaults where the vertex has none
+        // (diffuse opaque white, specular 0).
+        b.op(Opcode::Mov, dst(RegisterType::AttrOut, 0), {has_diffuse ? in(kInDiffuse) : c(kVcDefaultDiffuse)});
+        b.op(Opcode::Mov, dst(RegisterType::AttrOut, 1), {has_specular ? in(kInSpecular) : c(kVcZero)});
+    }
+    for (unsigned s = 0; s < kMaxTextureStages; ++s) {
+        const uint32_t set = ff.stages[s][kTssTexCoordIndex] & 0xFFFF, mode = ff.stages[s][kTssTexCoordIndex] >> 16;
+        const auto o_t = [&](uint8_t mask) { return dst(RegisterType::TexCrdOut, s, mask); };
+        if (mode == kTciPassThru) {
+            if (has_texcoord[set]) b.op(Opcode::Mov, o_t(isa::kMaskAll), {in(kInTexCoord0 + set)});
+            continue;
+        }
+        // Generated: (x, y, z, 1) of the camera-space normal, position, or the reflection of the
+        // view direction I about N, R = I - 2 (N.I) N, with I = norm(P) under LOCALVIEWER and
+        // (0, 0, 1) without (D3D9 "Texture Coordinate Processing"; as Wine).
+        if (mode == kTciNormal) b.op(Opcode::Mov, o_t(kXYZ), {r(1)});
+        if (mode == kTciPosition) b.op(Opcode::Mov, o_t(kXYZ), {r(0)});
+        if (mode == kTciReflection) {
+            if (states.local_viewer) {
+                b.op(Opcode::Nrm, rd(8, kXYZ), {r(0)});
+            } else {
+                b.op(Opcode::Mov, rd(8), {c(kVcZero)});
+                b.op(Opcode::Mov, rd(8, kZ), {c(kVcOne)});
+            }
+            b.op(Opcode::Dp3, rd(9, kX), {r(1), r(8)});
+            b.op(Opcode::Add, rd(9, kX), {r(9, kSwizzleX), r(9, kSwizzleX)});
+            b.op(Opcode::Mad, o_t(kXYZ), {negated(r(9, kSwizzleX)), r(1), r(8)});
+        }
+        b.op(Opcode::Mov, o_t(kW), {c(kVcOne)});
+    }
+    const auto o_fog = dst(RegisterType::RastOut, 1);  // oFog: a scalar, no write mask
+    if (vertex_fog) {
+        // D3D9 "Vertex Fog", range fog off: the distance is camera-space z. LINEAR: (end - d) /
+        // (end - start); EXP: e^-(density d); EXP2: e^-(density d)^2.
+        constants[kVcFog] = {rs.fog_end, rs.fog_end != rs.fog_start ? 1.0f / (rs.fog_end - rs.fog_start) : 0.0f,
+                             rs.fog_density, 1.4426950408889634f};
+        if (rs.fog_vertex_mode == FogMode::Linear) {
+            b.op(Opcode::Add, rd(10, kX), {c(kVcFog, kSwizzleX), negated(r(0, kSwizzleZ))});
+            b.op(Opcode::Mul, rd(10, kX), {r(10, kSwizzleX), c(kVcFog, kSwizzleY)});
+        } else {
+            b.op(Opcode::Mul, rd(10, kX), {r(0, kSwizzleZ), c(kVcFog, kSwizzleZ)});
+            if (rs.fog_vertex_mode == FogMode::Exp2) b.op(Opcode::Mul, rd(10, kX), {r(10, kSwizzleX), r(10, kSwizzleX)});
+            b.op(Opcode::Mul, rd(10, kX), {r(10, kSwizzleX), negated(c(kVcFog, kSwizzleW))});
+            b.op(Opcode::Exp, rd(10, kX), {r(10, kSwizzleX)});
+        }
+        // Not clamped here: the merger clamps the interpolated factor per pixel, which for LINEAR
+        // equals Wine's per-pixel factor of the interpolated distance even where a primitive
+        // crosses FOGSTART or FOGEND (clamping per vertex first would bend the gradient there).
+        b.op(Opcode::Mov, o_fog, {r(10, kSwizzleX)});
+    } else if (rs.fog_enable && rs.fog_table_mode == FogMode::None) {
+        // FOGVERTEXMODE NONE (and XYZRHW vertices): the fog factor is the specular colour's
+        // alpha (D3D9, "Vertex Fog"); with no specular in the vertex, no fog (factor 1).
+        b.op(Opcode::Mov, o_fog, {has_specular ? in(kInSpecular, kSwizzleW) : c(kVcOne, kSwizzleW)});
+    }
+    return std::move(b).finish(std::move(constants));
+}
+
+namespace {
+
+// D3DTOP values.
+enum TextureOp : uint32_t {
+    kDisable = 1, kSelectArg1, kSelectArg2, kModulate, kModulate2x, kModulate4x, kAdd, kAddSigned, kAddSigned2x,
+    kSubtract, kAddSmooth, kBlendDiffuseAlpha, kBlendTextureAlpha, kBlendFactorAlpha, kBlendTextureAlphaPm,
+    kBlendCurrentAlpha, kPremodulate, kModulateAlphaAddColor, kModulateColorAddAlpha, kModulateInvAlphaAddColor,
+    kModulateInvColorAddAlpha, kBumpEnvMap, kBumpEnvMapLuminance, kDotProduct3, kMultiplyAdd, kLerp,
+};
+// D3DTA selectors and modifiers.
+constexpr uint32_t kTaSelectMask = 0xF, kTaSpecular = 4, kTaTFactor = 3, kTaTemp = 5, kTaConstant = 6,
+                   kTaComplement = 0x10, kTaAlphaReplicate = 0x20;
+
+// Pixel program registers.
+constexpr unsigned kRCurrent = 0, kRTemp = 1, kRTexture = 2, kRArgFirst = 3, kRScratch = 6, kRScratch2 = 7;
+constexpr unsigned kPcTFactor = 0, kPcOne = 1, kPcMinusHalf = 2, kPcFour = 3, kPcStageConstant0 = 4,
+                   kPcZero = kPcStageConstant0 + kMaxTextureStages;
+
+bool op_reads_texture(uint32_t op, std::array<uint32_t, 3> args) {
+    if (op == kBlendTextureAlpha || op == kBlendTextureAlphaPm) return true;
+    const bool arg0 = op == kMultiplyAdd || op == kLerp;
+    const bool arg2 = op != kSelectArg1;
+    const bool arg1 = op != kSelectArg2;
+    return (arg0 && (args[0] & kTaSelectMask) == kTaTexture) || (arg1 && (args[1] & kTaSelectMask) == kTaTexture) ||
+           (arg2 && (args[2] & kTaSelectMask) == kTaTexture);
+}
+
+std::optional<std::string> check_op(unsigned stage, const char* which, uint32_t op) {
+    const std::string where = "texture stage " + std::to_string(stage) + " " + which + " ";
+    if (op < kDisable || op > kLerp) return where + std::to_string(op) + " is not a D3DTEXTUREOP";
+    if (op == kPremodulate || op == kBumpEnvMap || op == kBumpEnvMapLuminance)
+        return where + (op == kPremodulate ? "PREMODULATE" : op == kBumpEnvMap ? "BUMPENVMAP" : "BUMPENVMAPLUMINANCE") +
+               " is not emulated yet";
+    return std::nullopt;
+}
+std::optional<std::string> check_arg(unsigned stage, uint32_t arg) {
+    if ((arg & kTaSelectMask) > kTaConstant || (arg & ~(kTaSelectMask | kTaComplement | kTaAlphaReplicate)) != 0)
+        return "texture stage " + std::to_string(stage) + ": " + std::to_string(arg) + " is not a D3DTA argument";
+    return std::nullopt;
+}
+
+}  // namespace
+
+FixedFunctionProgram fixed_function_pixel_program(const FixedFunctionState& ff, const RenderState& rs,
+                                                  const std::array<std::optional<isa::TextureType>, kMaxTextureStages>& textures) {
+    const auto c = [](unsigned n, uint8_t swizzle = isa::kSwizzleIdentity) { return src(RegisterType::Const, n, swizzle); };
+    const auto r = [](unsigned n, uint8_t swizzle = isa::kSwizzleIdentity) { return src(RegisterType::Temp, n, swizzle); };
+    const auto rd = [](unsigned n, uint8_t mask = isa::kMaskAll) { return dst(RegisterType::Temp, n, mask); };
+    const isa::SourceParameter diffuse = src(RegisterType::Input, 0), specular = src(RegisterType::Input, 1);
+
+    // The stages in use: up to the first whose COLOROP is DISABLE.
+    unsigned stage_count = 0;
+    while (stage_count < kMaxTextureStages && ff.stages[stage_count][kTssColorOp] != kDisable) ++stage_count;
+    for (unsigned s = 0; s < stage_count; ++s) {
+        const auto& st = ff.stages[s];
+        if (auto e = check_op(s, "COLOROP", st[kTssColorOp])) return refused(*e);
+        if (auto e = check_op(s, "ALPHAOP", st[kTssAlphaOp])) return refused(*e);
+        for (uint32_t type : {kTssColorArg0, kTssColorArg1, kTssColorArg2, kTssAlphaArg0, kTssAlphaArg1, kTssAlphaArg2})
+            if (auto e = check_arg(s, st[type])) return refused(*e);
+        if (st[kTssResultArg] != kTaCurrent && st[kTssResultArg] != kTaTemp)
+            return refused("texture stage " + std::to_string(s) + ": RESULTARG must be CURRENT or TEMP");
+    }
+
+    ProgramBuilder b(isa::ShaderType::Pixel);
+    b.dcl_input(RegisterType::Input, 0);
+    b.dcl_input(RegisterType::Input, 1);
+    std::array<bool, kMaxTextureStages> samples{};
+    for (unsigned s = 0; s < stage_count; ++s) {
+        const auto& st = ff.stages[s];
+        samples[s] = textures[s] &&
+                     (op_reads_texture(st[kTssColorOp], {st[kTssColorArg0], st[kTssColorArg1], st[kTssColorArg2]}) ||
+                      (st[kTssAlphaOp] != kDisable &&
+                       op_reads_texture(st[kTssAlphaOp], {st[kTssAlphaArg0], st[kTssAlphaArg1], st[kTssAlphaArg2]})));
+        if (samples[s]) {
+            b.dcl_input(RegisterType::Texture, s);
+            b.dcl_input(RegisterType::Sampler, s, isa::DeclUsage::Position, 0, *textures[s]);
+        }
+    }
+
+    std::vector<std::array<float, 4>> constants(kPcZero + 1, std::array<float, 4>{0, 0, 0, 0});
+    constants[kPcTFactor] = color_of(rs.texture_factor);
+    constants[kPcOne] = {1, 1, 1, 1};
+    constants[kPcMinusHalf] = {-0.5f, -0.5f, -0.5f, -0.5f};
+    constants[kPcFour] = {4, 4, 4, 4};
+    for (unsigned s = 0; s < kMaxTextureStages; ++s) constants[kPcStageConstant0 + s] = color_of(ff.stages[s][kTssConstant]);
+
+    // CURRENT starts as the diffuse colour (stage 0's CURRENT is DIFFUSE), TEMP as 0.
+    b.op(Opcode::Mov, rd(kRCurrent), {diffuse});
+    b.op(Opcode::Mov, rd(kRTemp), {c(kPcZero)});
+
+    for (unsigned s = 0; s < stage_count; ++s) {
+        const auto& st = ff.stages[s];
+        // A stage without a texture reads TEXTURE as opaque white: D3D9's default stage 0
+        // (MODULATE TEXTURE, CURRENT) draws an untextured primitive in its diffuse colour.
+        if (samples[s]) {
+            b.op(Opcode::Tex, rd(kRTexture), {src(RegisterType::Texture, s), src(RegisterType::Sampler, s)});
+        } else {
+            b.op(Opcode::Mov, rd(kRTexture), {c(kPcOne)});
+        }
+        const unsigned result = st[kTssResultArg] == kTaTemp ? kRTemp : kRCurrent;
+
+        // One operation (colour: mask .xyz, alpha: .w) into `result`.
+        auto emit = [&](uint32_t op, std::array<uint32_t, 3> arg_values, uint8_t mask, bool alpha) {
+            // The arguments, with COMPLEMENT (1 - x) and ALPHAREPLICATE (x.aaaa) applied.
+            std::array<isa::SourceParameter, 3> a;
+            for (unsigned i = 0; i < 3; ++i) {
+                const uint32_t v = arg_values[i];
+                isa::SourceParameter base;
+                switch (v & kTaSelectMask) {
+                case kTaDiffuse: base = diffuse; break;
+                case kTaCurrent: base = r(kRCurrent); break;
+                case kTaTexture: base = r(kRTexture); break;
+                case kTaTFactor: base = c(kPcTFactor); break;
+                case kTaSpecular: base = specular; break;
+                case kTaTemp: base = r(kRTemp); break;
+                default: base = c(kPcStageConstant0 + s); break;
+                }
+                if (v & kTaAlphaReplicate || alpha) base = alpha_of(base);
+                if (v & kTaComplement) {
+                    b.op(Opcode::Add, rd(kRArgFirst + i, mask), {c(kPcOne), negated(base)});
+                    base = r(kRArgFirst + i);
+                }
+                a[i] = base;
+            }
+            const auto out = dst(RegisterType::Temp, result, mask, true);
+            const auto tmp = rd(kRScratch, mask);
+            const isa::SourceParameter t = r(kRScratch);
+            switch (op) {
+            case kSelectArg1: b.op(Opcode::Mov, out, {a[1]}); break;
+            case kSelectArg2: b.op(Opcode::Mov, out, {a[2]}); break;
+            case kModulate: b.op(Opcode::Mul, out, {a[1], a[2]}); break;
+            case kModulate2x:
+                b.op(Opcode::Mul, tmp, {a[1], a[2]});
+                b.op(Opcode::Add, out, {t, t});
+                break;
+            case kModulate4x:
+                b.op(Opcode::Mul, tmp, {a[1], a[2]});
+                b.op(Opcode::Mul, out, {t, c(kPcFour)});
+                break;
+            case kAdd: b.op(Opcode::Add, out, {a[1], a[2]}); break;
+            case kAddSigned:
+                b.op(Opcode::Add, tmp, {a[1], a[2]});
+                b.op(Opcode::Add, out, {t, c(kPcMinusHalf)});
+                break;
+            case kAddSigned2x:
+                b.op(Opcode::Add, tmp, {a[1], a[2]});
+                b.op(Opcode::Add, tmp, {t, c(kPcMinusHalf)});
+                b.op(Opcode::Add, out, {t, t});
+                break;
+            case kSubtract: b.op(Opcode::Add, out, {a[1], negated(a[2])}); break;
+            case kAddSmooth:  // a1 + a2 - a1 a2 = a1 + a2 (1 - a1)
+                b.op(Opcode::Mad, tmp, {negated(a[1]), a[2], a[2]});
+                b.op(Opcode::Add, out, {t, a[1]});
+                break;
+            case kBlendDiffuseAlpha: b.op(Opcode::Lrp, out, {alpha_of(diffuse), a[1], a[2]}); break;
+            case kBlendTextureAlpha: b.op(Opcode::Lrp, out, {r(kRTexture, kSwizzleW), a[1], a[2]}); break;
+            case kBlendFactorAlpha: b.op(Opcode::Lrp, out, {c(kPcTFactor, kSwizzleW), a[1], a[2]}); break;
+            case kBlendCurrentAlpha: b.op(Opcode::Lrp, out, {r(kRCurrent, kSwizzleW), a[1], a[2]}); break;
+            case kBlendTextureAlphaPm:  // a1 + a2 (1 - texture alpha)
+                b.op(Opcode::Add, rd(kRScratch2, mask), {c(kPcOne), negated(r(kRTexture, kSwizzleW))});
+                b.op(Opcode::Mad, out, {a[2], r(kRScratch2), a[1]});
+                break;
+            case kModulateAlphaAddColor:  // a1.rgb + a1.a a2.rgb (alpha op: as MODULATE, D3D9 has none)
+                if (alpha) b.op(Opcode::Mul, out, {a[1], a[2]});
+                else b.op(Opcode::Mad, out, {alpha_of(a[1]), a[2], a[1]});
+                break;
+            case kModulateColorAddAlpha:  // a1.rgb a2.rgb + a1.a
+                if (alpha) b.op(Opcode::Mul, out, {a[1], a[2]});
+                else b.op(Opcode::Mad, out, {a[1], a[2], alpha_of(a[1])});
+                break;
+            case kModulateInvAlphaAddColor:  // (1 - a1.a) a2.rgb + a1.rgb
+                b.op(Opcode::Add, rd(kRScratch2, mask), {c(kPcOne), negated(alpha_of(a[1]))});
+                b.op(Opcode::Mad, out, {r(kRScratch2), a[2], a[1]});
+                break;
+            case kModulateInvColorAddAlpha:  // (1 - a1.rgb) a2.rgb + a1.a
+                b.op(Opcode::Add, rd(kRScratch2, mask), {c(kPcOne), negated(a[1])});
+                b.op(Opcode::Mad, out, {r(kRScratch2), a[2], alpha_of(a[1])});
+                break;
+            case kDotProduct3: {  // 4 ((a1 - 0.5) . (a2 - 0.5)) in every channel, alpha too
+                b.op(Opcode::Add, rd(kRScratch), {a[1], c(kPcMinusHalf)});
+                b.op(Opcode::Add, rd(kRScratch2), {a[2], c(kPcMinusHalf)});
+                b.op(Opcode::Dp3, rd(kRScratch), {t, r(kRScratch2)});
+                b.op(Opcode::Mul, dst(RegisterType::Temp, result, alpha ? kW : isa::kMaskAll, true), {t, c(kPcFour)});
+                break;
+            }
+            case kMultiplyAdd: b.op(Opcode::Mad, out, {a[1], a[2], a[0]}); break;
+            case kLerp: b.op(Opcode::Lrp, out, {a[0], a[1], a[2]}); break;
+            default: break;
+            }
+        };
+        const uint32_t color_op = st[kTssColorOp], alpha_op = st[kTssAlphaOp];
+        emit(color_op, {st[kTssColorArg0], st[kTssColorArg1], st[kTssColorArg2]}, kXYZ, false);
+        // DOTPRODUCT3 as the colour operation sets alpha too (D3D9: "the result is replicated
+        // to all four channels"); a disabled alpha operation keeps the previous alpha.
+        if (color_op != kDotProduct3 && alpha_op != kDisable)
+            emit(alpha_op, {st[kTssAlphaArg0], st[kTssAlphaArg1], st[kTssAlphaArg2]}, kW, true);
+    }
+    // SPECULARENABLE: the specular colour is added after the last stage, not clamped before the
+    // fog blend (the target's conversion clamps): what Wine does; clamping here put 6598 pixels
+    // of ff_lit_cube's frame 2 up to 16/255 off Wine's where fog blends a sum above 1.
+    if (rs.specular_enable) b.op(Opcode::Add, dst(RegisterType::Temp, kRCurrent, kXYZ, false), {r(kRCurrent), specular});
+    b.op(Opcode::Mov, dst(RegisterType::ColorOut, 0), {r(kRCurrent)});
+    return std::move(b).finish(std::move(constants));
+}
+
+}  // namespace sm2::runtime

@@ -1,0 +1,457 @@
+// Draws without shaders: the fixed-function vertex and pixel programs generated from the state
+// (runtime/src/fixed_function_programs.cpp, docs/fixed-function.md). Every expected pixel is worked
+// out by hand from D3D9's documented rules: XYZRHW coordinates are render-target pixels (centres
+// at integers), World x View x Projection transforms row vectors, the texture operations'
+// formulas of D3DTEXTUREOP, and the target's UNORM conversion (round to nearest).
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "fixed_function_programs.h"
+#include "sm2/runtime/device.h"
+#include "sm2/runtime/replay.h"
+#include "sm2/runtime/stream_assembler.h"
+
+namespace sm2::runtime {
+namespace {
+
+// A 4x4 back buffer cleared to opaque black, culling off, no shaders.
+const std::string kSetup =
+    "sm2cs 1\n"
+    "CreateDevice 4 4 A8R8G8B8\n"
+    "SetRenderState CULLMODE NONE\n"
+    "Clear TARGET 0xFF000000 1 0\n"
+    "BeginScene\n";
+
+struct Outcome {
+    ReplayResult result;
+    std::vector<uint8_t> pixels;  // back buffer bytes, B G R A per pixel
+    DrawStatistics statistics;
+};
+
+Outcome replay_text(const std::string& body) {
+    cs::TextOptions text;
+    text.file_name = "ff.sm2cs";
+    auto parsed = cs::parse_text(kSetup + body, text);
+    EXPECT_TRUE(parsed.ok()) << parsed.error->to_string();
+    Outcome out;
+    if (!parsed.ok()) return out;
+    Device device;
+    ReplayOptions options;
+    options.file_name = "ff.sm2cs";
+    options.assembler = runtime::stream_assembler();
+    out.result = replay(device, *parsed.stream, options);
+    const Surface* back = device.surface("backbuffer");
+    out.pixels.resize(back->bytes().size());
+    std::memcpy(out.pixels.data(), back->bytes().data(), out.pixels.size());
+    out.statistics = device.statistics();
+    return out;
+}
+
+void expect_no_diagnostics(const ReplayResult& r) {
+    for (const auto& d : r.diagnostics) ADD_FAILURE() << d.to_string();
+}
+
+// The A8R8G8B8 pixel (x, y) as 0xAARRGGBB.
+uint32_t pixel(const Outcome& o, unsigned x, unsigned y) {
+    uint32_t v = 0;
+    std::memcpy(&v, o.pixels.data() + (y * 4 + x) * 4, 4);
+    return v;
+}
+
+// Vertex data as a u32 blob: floats by their bits, colours as D3DCOLOR words.
+struct Words {
+    std::vector<uint32_t> words;
+    Words& f(std::initializer_list<float> values) {
+        for (float v : values) words.push_back(std::bit_cast<uint32_t>(v));
+        return *this;
+    }
+    Words& color(uint32_t argb) {
+        words.push_back(argb);
+        return *this;
+    }
+    [[nodiscard]] std::string blob() const {
+        std::string out = "u32[";
+        for (uint32_t w : words) out += ' ' + std::to_string(w);
+        return out + " ]";
+    }
+};
+
+// An XYZRHW | DIFFUSE quad (triangle strip) from (x0, y0) to (x1, y1) in pixels.
+std::string rhw_quad(float x0, float y0, float x1, float y1, uint32_t diffuse, float rhw = 1.0f) {
+    Words w;
+    w.f({x0, y0, 0.5f, rhw}).color(diffuse).f({x1, y0, 0.5f, rhw}).color(diffuse);
+    w.f({x0, y1, 0.5f, rhw}).color(diffuse).f({x1, y1, 0.5f, rhw}).color(diffuse);
+    return "SetFVF { XYZRHW DIFFUSE }\nDrawPrimitiveUP TRIANGLESTRIP 2 20 " + w.blob() + "\n";
+}
+
+TEST(FixedFunctionDraw, XyzrhwVertexCoversExactlyItsPixel) {
+    // The square [1.5, 2.5) x [0.5, 1.5) holds one pixel centre, (2, 1); with rhw 0.25 (w = 4)
+    // it must land in the same place (the program multiplies by w, the viewport divides).
+    for (float rhw : {1.0f, 0.25f}) {
+        const Outcome o = replay_text(rhw_quad(1.5f, 0.5f, 2.5f, 1.5f, 0xFF00FF00u, rhw));
+        expect_no_diagnostics(o.result);
+        for (unsigned y = 0; y < 4; ++y)
+            for (unsigned x = 0; x < 4; ++x)
+                EXPECT_EQ(pixel(o, x, y), x == 2 && y == 1 ? 0xFF00FF00u : 0xFF000000u) << x << "," << y << " rhw " << rhw;
+    }
+}
+
+TEST(FixedFunctionDraw, XyzrhwHonoursTheViewportOrigin) {
+    // Pre-transformed x, y are render-target pixels whatever the viewport: with the viewport at
+    // (2, 2) the square around centre (1, 1) still lands on pixel (1, 1)... and is clipped away
+    // outside the viewport, so only a square inside it shows: centre (3, 2).
+    const Outcome o = replay_text("SetViewport 2 2 2 2 0 1\n" + rhw_quad(2.5f, 1.5f, 3.5f, 2.5f, 0xFF0000FFu));
+    expect_no_diagnostics(o.result);
+    for (unsigned y = 0; y < 4; ++y)
+        for (unsigned x = 0; x < 4; ++x)
+            EXPECT_EQ(pixel(o, x, y), x == 3 && y == 2 ? 0xFF0000FFu : 0xFF000000u) << x << "," << y;
+}
+
+TEST(FixedFunctionDraw, WorldViewProjectionTransformXyzPositions) {
+    // A quad over the left half of clip space, x in [-1, 0]; WORLD translates x by +0.5 and
+    // PROJECTION scales y by 0.5: x in [-0.5, 0.5] -> pixels x 1..2, y in [-0.5, 0.5] -> rows 1..2.
+    // No DIFFUSE in the vertex: D3D9's default diffuse, opaque white.
+    Words w;
+    w.f({-1, 1, 0.5f}).f({0, 1, 0.5f}).f({-1, -1, 0.5f}).f({0, -1, 0.5f});
+    const Outcome o = replay_text(
+        "SetRenderState LIGHTING FALSE\n"
+        "SetTransform WORLD f32[ 1 0 0 0  0 1 0 0  0 0 1 0  0.5 0 0 1 ]\n"
+        "SetTransform PROJECTION f32[ 1 0 0 0  0 0.5 0 0  0 0 1 0  0 0 0 1 ]\n"
+        "SetFVF XYZ\nDrawPrimitiveUP TRIANGLESTRIP 2 12 " + w.blob() + "\n");
+    expect_no_diagnostics(o.result);
+    for (unsigned y = 0; y < 4; ++y)
+        for (unsigned x = 0; x < 4; ++x) {
+            const bool inside = x >= 1 && x <= 2 && y >= 1 && y <= 2;
+            EXPECT_EQ(pixel(o, x, y), inside ? 0xFFFFFFFFu : 0xFF000000u) << x << "," << y;
+        }
+}
+
+// A full-target XYZ | NORMAL quad at z = 0.5 (identity transforms) with one normal for all four
+// vertices, so that every vertex gets the same lit colour and the pixels show it exactly.
+std::string lit_quad(float nx, float ny, float nz) {
+    Words w;
+    for (auto [x, y] : {std::pair{-1.0f, 1.0f}, {1.0f, 1.0f}, {-1.0f, -1.0f}, {1.0f, -1.0f}})
+        w.f({x, y, 0.5f, nx, ny, nz});
+    return "SetFVF { XYZ NORMAL }\nDrawPrimitiveUP TRIANGLESTRIP 2 24 " + w.blob() + "\n";
+}
+
+TEST(FixedFunctionDraw, DirectionalLightOnAKnownNormal) {
+    // Light: directional, diffuse (1, 0.5, 0.25), shining along +z, so L (towards the light) =
+    // (0, 0, -1); N = (0, 0.6, -0.8): N.L = 0.8. Material diffuse 0.8 (no vertex colour, so
+    // COLORVERTEX falls back to the material), ambient 0.5; AMBIENT 0x202020 (32/255).
+    // colour = Ca Ga + Cd Ld N.L = 0.5 * 0.12549 + 0.8 * 0.8 * (1, 0.5, 0.25)
+    //        = (0.70275, 0.38275, 0.22275) -> (179.2, 97.6, 56.8) -> (0xB3, 0x62, 0x39); alpha Cd.a = 1.
+    const Outcome o = replay_text(
+        "SetRenderState AMBIENT 0x00202020\n"
+        "SetMaterial { 0.8 0.8 0.8 1 } { 0.5 0.5 0.5 1 } { 0 0 0 0 } { 0 0 0 0 } 0\n"
+        "SetLight 0 DIRECTIONAL { 1 0.5 0.25 1 } { 0 0 0 0 } { 0 0 0 0 } { 0 0 0 } { 0 0 1 } 0 0 0 0 0 0 0\n"
+        "LightEnable 0 TRUE\n" + lit_quad(0, 0.6f, -0.8f));
+    expect_no_diagnostics(o.result);
+    EXPECT_EQ(pixel(o, 1, 2), 0xFFB36239u);
+    // Facing away (N.L < 0): only the ambient term, 0.0627 -> 16 (0x10).
+    const Outcome away = replay_text(
+        "SetRenderState AMBIENT 0x00202020\n"
+        "SetMaterial { 0.8 0.8 0.8 1 } { 0.5 0.5 0.5 1 } { 0 0 0 0 } { 0 0 0 0 } 0\n"
+        "SetLight 0 DIRECTIONAL { 1 0.5 0.25 1 } { 0 0 0 0 } { 0 0 0 0 } { 0 0 0 } { 0 0 1 } 0 0 0 0 0 0 0\n"
+        "LightEnable 0 TRUE\n" + lit_quad(0, 0, 1));
+    expect_no_diagnostics(away.result);
+    EXPECT_EQ(pixel(away, 1, 2), 0xFF101010u);
+}
+
+TEST(FixedFunctionDraw, SpecularHighlightWithALocalViewer) {
+    // Directional light along +z (L = (0, 0, -1)), N = (0, 0, -1), the eye at the origin: from
+    // each corner (+-1, +-1, 0.5) the eye direction is (-+1, -+1, -0.5) / 1.5, H = norm(E + L) =
+    // norm(-+0.6667, -+0.6667, -1.3333), N.H = 1.3333 / 1.63299 = 0.81650; Power 2: 0.66667;
+    // light specular 1, material specular 0.6: 0.4 -> 102 (0x66) with SPECULARENABLE (material
+    // diffuse and ambient 0, so the specular is all there is).
+    // LOCALVIEWER off (D3D9's "Specular Lighting": H = norm((0, 0, 1) + L)): the light shining
+    // along (-0.6, 0, 0.8), L = (0.6, 0, -0.8), N = (1, 0, 0): N.L = 0.6 > 0, H = norm(0.6, 0, 0.2)
+    // = (0.94868, 0, 0.31623), N.H^2 = 0.9, 0.6 * 0.9 = 0.54 -> 137.7 -> 0x8A, the same at every
+    // vertex (with the local viewer it would differ per vertex).
+    const auto highlight = [](const char* local_viewer, const char* direction, float nx, float nz) {
+        const Outcome o = replay_text(
+            std::string("SetRenderState SPECULARENABLE TRUE\nSetRenderState LOCALVIEWER ") + local_viewer +
+            "\nSetMaterial { 0 0 0 1 } { 0 0 0 0 } { 0.6 0.6 0.6 1 } { 0 0 0 0 } 2\n"
+            "SetLight 0 DIRECTIONAL { 0 0 0 0 } { 1 1 1 1 } { 0 0 0 0 } { 0 0 0 } " + direction +
+            " 0 0 0 0 0 0 0\nLightEnable 0 TRUE\n" + lit_quad(nx, 0, nz));
+        expect_no_diagnostics(o.result);
+        return pixel(o, 1, 1);
+    };
+    EXPECT_EQ(highlight("TRUE", "{ 0 0 1 }", 0, -1), 0xFF666666u);
+    EXPECT_EQ(highlight("FALSE", "{ -0.6 0 0.8 }", 1, 0), 0xFF8A8A8Au);
+}
+
+TEST(FixedFunctionDraw, PointLightAttenuationAndRange) {
+    // Point light at (0, 0, -2); the quad's corners (+-1, +-1, 0.5) are all d = sqrt(8.25) =
+    // 2.87228 from it, N = (0, 0, -1): N.L = 2.5 / d = 0.87039; Atten = 1 / (0.5 + 0.25 d) =
+    // 0.82097; white light and material: 0.71456 -> 182.2 -> 182 (0xB6).
+    const std::string material = "SetMaterial { 1 1 1 1 } { 0 0 0 0 } { 0 0 0 0 } { 0 0 0 0 } 0\n";
+    const auto light = [](const char* range) {
+        return std::string("SetLight 3 POINT { 1 1 1 1 } { 0 0 0 0 } { 0 0 0 0 } { 0 0 -2 } { 0 0 0 } ") + range +
+               " 0 0.5 0.25 0 0 0\nLightEnable 3 TRUE\n";
+    };
+    const Outcome in_range = replay_text(material + light("10") + lit_quad(0, 0, -1));
+    expect_no_diagnostics(in_range.result);
+    EXPECT_EQ(pixel(in_range, 2, 1), 0xFFB6B6B6u);
+    // Range 2.8 < d: no light at all.
+    const Outcome beyond = replay_text(material + light("2.8") + lit_quad(0, 0, -1));
+    expect_no_diagnostics(beyond.result);
+    EXPECT_EQ(pixel(beyond, 2, 1), 0xFF000000u);
+}
+
+TEST(FixedFunctionDraw, SpotLightPenumbra) {
+    // The point light of PointLightAttenuationAndRange as a spot shining along +z, theta =
+    // 0.902054 (cos(theta/2) = 0.9), phi = 1.287002 (cos(phi/2) = 0.8): rho = L . (0, 0, -1) =
+    // 0.87039 lies in the penumbra, x = (0.87039 - 0.8) / 0.1 = 0.70391. Falloff 1: 0.87039 *
+    // 0.82097 * 0.70391 = 0.50297 -> 128.26 -> 0x80; falloff 2: 0.35403 -> 90.28 -> 0x5A.
+    const auto spot = [](const char* falloff, const char* phi) {
+        return "SetMaterial { 1 1 1 1 } { 0 0 0 0 } { 0 0 0 0 } { 0 0 0 0 } 0\n"
+               "SetLight 0 SPOT { 1 1 1 1 } { 0 0 0 0 } { 0 0 0 0 } { 0 0 -2 } { 0 0 1 } 10 " +
+               std::string(falloff) + " 0.5 0.25 0 0.902054 " + phi + "\nLightEnable 0 TRUE\n" + lit_quad(0, 0, -1);
+    };
+    const Outcome linear = replay_text(spot("1", "1.287002"));
+    expect_no_diagnostics(linear.result);
+    EXPECT_EQ(pixel(linear, 1, 1), 0xFF808080u);
+    const Outcome squared = replay_text(spot("2", "1.287002"));
+    expect_no_diagnostics(squared.result);
+    EXPECT_EQ(pixel(squared, 1, 1), 0xFF5A5A5Au);
+    // phi = theta: no penumbra, rho = 0.87039 < cos(theta/2) = 0.9 is outside: black.
+    const Outcome outside = replay_text(spot("1", "0.902054"));
+    expect_no_diagnostics(outside.result);
+    EXPECT_EQ(pixel(outside, 1, 1), 0xFF000000u);
+}
+
+TEST(FixedFunctionDraw, GeneratedTextureCoordinates) {
+    // A 2x1 texture, POINT: u < 0.5 reads the left texel (red), u >= 0.5 the right (green), with
+    // WRAP addressing. Stage 0 SELECTARG1 TEXTURE with TEXCOORDINDEX generating u from camera
+    // space (identity transforms, LIGHTING off, the vertex has no texture coordinates).
+    const auto u_of = [](const std::string& tci, const std::string& body) {
+        const Outcome o = replay_text(
+            "CreateTexture tex 2 1 1 A8R8G8B8\nLockRect tex 0 u8[ 0 0 255 255  0 255 0 255 ]\nSetTexture 0 tex\n"
+            "SetSamplerState 0 MINFILTER POINT\nSetSamplerState 0 MAGFILTER POINT\n"
+            "SetRenderState LIGHTING FALSE\nSetRenderState LOCALVIEWER FALSE\n"
+            "SetTextureStageState 0 COLOROP SELECTARG1\nSetTextureStageState 0 TEXCOORDINDEX " + tci + "\n" + body);
+        expect_no_diagnostics(o.result);
+        return o;
+    };
+    constexpr uint32_t kRed = 0xFFFF0000u, kGreen = 0xFF00FF00u;
+    // CAMERASPACENORMAL: u = n.x: 0.8 -> green, 0.2 -> red.
+    EXPECT_EQ(pixel(u_of("{ CAMERASPACENORMAL 0 }", lit_quad(0.8f, 0, -0.6f)), 1, 1), kGreen);
+    EXPECT_EQ(pixel(u_of("{ CAMERASPACENORMAL 0 }", lit_quad(0.2f, 0, -0.98f)), 1, 1), kRed);
+    // CAMERASPACEPOSITION: u = x, from -1 (left edge) to 1: pixel column 3 (x = 0.75) green,
+    // column 0 (x = -0.75, wrapped to 0.25) red.
+    const Outcome position = u_of("{ CAMERASPACEPOSITION 0 }", lit_quad(0, 0, -1));
+    EXPECT_EQ(pixel(position, 3, 1), kGreen);
+    EXPECT_EQ(pixel(position, 0, 1), kRed);
+    // CAMERASPACEREFLECTIONVECTOR, LOCALVIEWER off: I = (0, 0, 1), N = (0.6, 0, -0.8): N.I = -0.8,
+    // R = I + 1.6 N = (0.96, 0, -0.28) -> green; N = (-0.6, 0, -0.8): R.x = -0.96 -> 0.04 -> red.
+    EXPECT_EQ(pixel(u_of("{ CAMERASPACEREFLECTIONVECTOR 0 }", lit_quad(0.6f, 0, -0.8f)), 2, 2), kGreen);
+    EXPECT_EQ(pixel(u_of("{ CAMERASPACEREFLECTIONVECTOR 0 }", lit_quad(-0.6f, 0, -0.8f)), 2, 2), kRed);
+}
+
+TEST(FixedFunctionDraw, VertexFogFactorAtAKnownDepth) {
+    // Camera-space z = 0.25 everywhere (identity transforms), white vertices, FOGCOLOR blue.
+    // LINEAR start 0, end 1: f = (1 - 0.25) / 1 = 0.75: R = G = 0.75 -> 191.25 -> 0xBF, B = 1.
+    // EXP density 2: f = e^-0.5 = 0.60653 -> 154.67 -> 0x9B. EXP2: e^-0.25 = 0.77880 -> 198.6 -> 0xC7.
+    Words w;
+    for (auto [x, y] : {std::pair{-1.0f, 1.0f}, {1.0f, 1.0f}, {-1.0f, -1.0f}, {1.0f, -1.0f}}) w.f({x, y, 0.25f});
+    const auto fogged = [&](const char* mode) {
+        const Outcome o = replay_text(std::string("SetRenderState LIGHTING FALSE\nSetRenderState FOGENABLE TRUE\n"
+                                                  "SetRenderState FOGCOLOR 0xFF0000FF\nSetRenderState FOGSTART 0\n"
+                                                  "SetRenderState FOGEND 1\nSetRenderState FOGDENSITY 2\n"
+                                                  "SetRenderState FOGVERTEXMODE ") +
+                                      mode + "\nSetFVF XYZ\nDrawPrimitiveUP TRIANGLESTRIP 2 12 " + w.blob() + "\n");
+        expect_no_diagnostics(o.result);
+        return pixel(o, 2, 2);
+    };
+    EXPECT_EQ(fogged("LINEAR"), 0xFFBFBFFFu);
+    EXPECT_EQ(fogged("EXP"), 0xFF9B9BFFu);
+    EXPECT_EQ(fogged("EXP2"), 0xFFC7C7FFu);
+}
+
+// Stage 0 = OP(arg1 TFACTOR, arg2 DIFFUSE) over the whole target; the colour at pixel (0, 0).
+uint32_t stage0(const std::string& color_op, uint32_t tfactor, uint32_t diffuse, const std::string& extra = "") {
+    const Outcome o = replay_text("SetRenderState TEXTUREFACTOR " + std::to_string(tfactor) +
+                                  "\nSetTextureStageState 0 COLOROP " + color_op +
+                                  "\nSetTextureStageState 0 COLORARG1 TFACTOR\nSetTextureStageState 0 COLORARG2 DIFFUSE\n" +
+                                  extra + rhw_quad(-0.5f, -0.5f, 3.5f, 3.5f, diffuse));
+    expect_no_diagnostics(o.result);
+    return pixel(o, 0, 0);
+}
+
+TEST(FixedFunctionDraw, TextureStageOperations) {
+    // TFACTOR (0x60, 0xC0, 0x20) = (96, 192, 32)/255, diffuse (0xC0, 0xC0, 0x80) = (192, 192, 128)/255.
+    // Alpha: stage 0's default ALPHAOP SELECTARG1 of TEXTURE, no texture: opaque white, 0xFF.
+    const uint32_t tf = 0xFF60C020u, dif = 0xFFC0C080u;
+    // MODULATE2X: 2 a1 a2: R 2*96*192/255^2 = 0.56693 -> 144.57 -> 145 (0x91); G 1.134 -> clamped 255;
+    // B 2*32*128/255^2 = 0.12598 -> 32.12 -> 32.
+    EXPECT_EQ(stage0("MODULATE2X", tf, dif), 0xFF91FF20u);
+    // MODULATE: R 96*192/255 = 72.28 -> 72 (0x48); G 192*192/255 = 144.56 -> 145; B 32*128/255 = 16.06 -> 16.
+    EXPECT_EQ(stage0("MODULATE", tf, dif), 0xFF489110u);
+    // MODULATE4X: R 289.1 -> 255; G -> 255; B 64.25 -> 64.
+    EXPECT_EQ(stage0("MODULATE4X", tf, dif), 0xFFFFFF40u);
+    // ADD: R 288 -> 255; G 384 -> 255; B 160 (0xA0).
+    EXPECT_EQ(stage0("ADD", tf, dif), 0xFFFFFFA0u);
+    // SUBTRACT a1 - a2: R -96 -> 0; G 0; B -96 -> 0.
+    EXPECT_EQ(stage0("SUBTRACT", tf, dif), 0xFF000000u);
+    // ADDSIGNED a1 + a2 - 0.5: R (288 - 127.5) = 160.5 -> 161 (0xA1)? 96+192 = 288/255 = 1.12941 - 0.5
+    // = 0.62941 -> 160.5 -> round half to even or up: the float is 160.50000x, so 161 (0xA1); G
+    // 384/255 - 0.5 = 1.00588 -> 255; B 160/255 - 0.5 = 0.12745 -> 32.5 -> the float 32.49999 -> 32.
+    const uint32_t signed_sum = stage0("ADDSIGNED", tf, dif);
+    EXPECT_EQ(signed_sum >> 8 & 0xFF, 0xFFu);
+    EXPECT_NEAR(static_cast<int>(signed_sum >> 16 & 0xFF), 160.5, 0.5);
+    EXPECT_NEAR(static_cast<int>(signed_sum & 0xFF), 32.5, 0.5);
+    // SELECTARG2: the diffuse colour.
+    EXPECT_EQ(stage0("SELECTARG2", tf, dif), 0xFFC0C080u);
+    // ADDSMOOTH a1 + a2 - a1 a2: R (96 + 192 - 72.28) = 215.72 -> 216 (0xD8); G 255 (384 - 144.56
+    // = 239.44 -> 239 (0xEF)); B 32 + 128 - 16.06 = 143.94 -> 144 (0x90).
+    EXPECT_EQ(stage0("ADDSMOOTH", tf, dif), 0xFFD8EF90u);
+    // BLENDFACTORALPHA with TFACTOR alpha 0x40 (64/255 = 0.25098): a1 0.25098 + a2 0.74902:
+    // R 96*0.25098 + 192*0.74902 = 167.91 -> 168 (0xA8); G 192; B 32*.25098 + 128*.74902 = 103.91 -> 104 (0x68).
+    EXPECT_EQ(stage0("BLENDFACTORALPHA", 0x4060C020u, dif), 0xFFA8C068u);
+}
+
+TEST(FixedFunctionDraw, ArgumentModifiers) {
+    // COLORARG1 { TFACTOR COMPLEMENT } with SELECTARG1: 1 - (96, 192, 32)/255 = (159, 63, 223).
+    EXPECT_EQ(stage0("SELECTARG1", 0xFF60C020u, 0xFFFFFFFFu, "SetTextureStageState 0 COLORARG1 { TFACTOR COMPLEMENT }\n"),
+              0xFF9F3FDFu);
+    // { TFACTOR ALPHAREPLICATE }: TFACTOR's alpha 0x40 in every colour channel.
+    EXPECT_EQ(stage0("SELECTARG1", 0x4060C020u, 0xFFFFFFFFu,
+                     "SetTextureStageState 0 COLORARG1 { TFACTOR ALPHAREPLICATE }\n"),
+              0xFF404040u);
+}
+
+TEST(FixedFunctionDraw, SecondStageAndTempResult) {
+    // Stage 0 writes TFACTOR into TEMP (RESULTARG TEMP), so CURRENT stays the diffuse colour;
+    // stage 1 MODULATEs TEMP and CURRENT: (0x80/255) * (0xFF, 0x80, 0x00)/255 = (128, 64.25, 0) -> (0x80, 0x40, 0).
+    const Outcome o = replay_text(
+        "SetRenderState TEXTUREFACTOR 0xFF808080\n"
+        "SetTextureStageState 0 COLOROP SELECTARG1\nSetTextureStageState 0 COLORARG1 TFACTOR\n"
+        "SetTextureStageState 0 RESULTARG TEMP\n"
+        "SetTextureStageState 1 COLOROP MODULATE\nSetTextureStageState 1 COLORARG1 TEMP\n"
+        "SetTextureStageState 1 COLORARG2 CURRENT\n" +
+        rhw_quad(-0.5f, -0.5f, 3.5f, 3.5f, 0xFFFF8000u));
+    expect_no_diagnostics(o.result);
+    EXPECT_EQ(pixel(o, 1, 1), 0xFF804000u);
+}
+
+TEST(FixedFunctionDraw, SpecularIsAddedWhenEnabled) {
+    // XYZRHW | DIFFUSE | SPECULAR: diffuse (0x40, 0x40, 0x40) + specular (0x20, 0xF0, 0) =
+    // (0x60, 0xFF clamped, 0x40) with SPECULARENABLE; the diffuse alone without.
+    Words w;
+    for (auto [x, y] : {std::pair{-0.5f, -0.5f}, {3.5f, -0.5f}, {-0.5f, 3.5f}, {3.5f, 3.5f}})
+        w.f({x, y, 0.5f, 1.0f}).color(0xFF404040u).color(0x0020F000u);
+    const std::string draw = "SetFVF { XYZRHW DIFFUSE SPECULAR }\nDrawPrimitiveUP TRIANGLESTRIP 2 24 " + w.blob() + "\n";
+    const Outcome on = replay_text("SetRenderState SPECULARENABLE TRUE\n" + draw);
+    expect_no_diagnostics(on.result);
+    EXPECT_EQ(pixel(on, 2, 2), 0xFF60FF40u);
+    const Outcome off = replay_text(draw);
+    expect_no_diagnostics(off.result);
+    EXPECT_EQ(pixel(off, 2, 2), 0xFF404040u);
+}
+
+TEST(FixedFunctionDraw, TextureSelectedByTheStage) {
+    // A 1x1 A8R8G8B8 texture (B G R A bytes 0x10 0x20 0x30 0x80): SELECTARG1 TEXTURE shows it,
+    // alpha too (the default ALPHAOP SELECTARG1 TEXTURE); the vertex carries TEX1 coordinates.
+    Words w;
+    for (auto [x, y] : {std::pair{-0.5f, -0.5f}, {3.5f, -0.5f}, {-0.5f, 3.5f}, {3.5f, 3.5f}})
+        w.f({x, y, 0.5f, 1.0f, 0.5f, 0.5f});
+    const Outcome o = replay_text(
+        "CreateTexture tex 1 1 1 A8R8G8B8\nLockRect tex 0 u8[ 16 32 48 128 ]\nSetTexture 0 tex\n"
+        "SetTextureStageState 0 COLOROP SELECTARG1\n"
+        "SetFVF { XYZRHW TEX1 }\nDrawPrimitiveUP TRIANGLESTRIP 2 24 " + w.blob() + "\n");
+    expect_no_diagnostics(o.result);
+    EXPECT_EQ(pixel(o, 3, 0), 0x80302010u);
+}
+
+TEST(FixedFunctionDraw, ProgramsAreCachedByState) {
+    // The same state twice: the second draw builds no pipeline; a new TFACTOR value is a
+    // constant, not a new program.
+    const std::string quad = rhw_quad(-0.5f, -0.5f, 3.5f, 3.5f, 0xFF808080u);
+    const Outcome once = replay_text(quad);
+    const Outcome twice = replay_text(quad + "SetRenderState TEXTUREFACTOR 0xFF102030\n" + quad);
+    expect_no_diagnostics(twice.result);
+    EXPECT_EQ(twice.statistics.pipelines_built, once.statistics.pipelines_built);
+    EXPECT_EQ(twice.statistics.draws, 2u);
+}
+
+TEST(FixedFunctionDraw, BadStageValuesAreRefused) {
+    // The stream parser refuses unknown names; values set through the API reach the generator,
+    // which refuses them with a message rather than building a program.
+    const std::array<std::optional<isa::TextureType>, kMaxTextureStages> none{};
+    const auto refusal = [&](unsigned stage, uint32_t type, uint32_t value) {
+        FixedFunctionState ff;
+        ff.stages[1][kTssColorOp] = kTopModulate;
+        EXPECT_FALSE(ff.set_texture_stage_state(stage, type, value));
+        const auto generated = fixed_function_pixel_program(ff, RenderState{}, none);
+        EXPECT_FALSE(generated.program);
+        return generated.error;
+    };
+    EXPECT_EQ(refusal(0, kTssColorOp, 99), "texture stage 0 COLOROP 99 is not a D3DTEXTUREOP");
+    EXPECT_EQ(refusal(1, kTssAlphaOp, 17), "texture stage 1 ALPHAOP PREMODULATE is not emulated yet");
+    EXPECT_EQ(refusal(0, kTssColorArg1, 7), "texture stage 0: 7 is not a D3DTA argument");
+    EXPECT_EQ(refusal(0, kTssResultArg, kTaTexture), "texture stage 0: RESULTARG must be CURRENT or TEMP");
+    // The default state builds.
+    EXPECT_TRUE(fixed_function_pixel_program(FixedFunctionState{}, RenderState{}, none).program);
+}
+
+TEST(FixedFunctionStateBlocks, TypesCaptureTheirFixedFunctionStates) {
+    // D3D9's lists: PIXELSTATE holds every texture stage state; VERTEXSTATE the stage states
+    // TEXCOORDINDEX and TEXTURETRANSFORMFLAGS, the lights and the FVF; ALL adds the transforms
+    // and the material.
+    Device device;
+    const Matrix4 scale2{2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1};
+    Material red;
+    red.diffuse = {1, 0, 0, 1};
+    Light point;
+    point.type = LightType::Point;
+    point.range = 10;
+    const auto set_all = [&](bool changed) {
+        ASSERT_TRUE(device.set_texture_stage_state(0, kTssColorOp, changed ? 5u : kTopModulate));  // MODULATE2X
+        ASSERT_TRUE(device.set_texture_stage_state(0, kTssTexCoordIndex, changed ? 3u : 0u));
+        ASSERT_TRUE(device.set_transform(kTransformView, changed ? scale2 : identity_matrix()));
+        ASSERT_TRUE(device.set_material(changed ? red : Material{}));
+        ASSERT_TRUE(device.set_light(2, changed ? point : Light{}));
+    };
+    set_all(true);
+    for (const char* name : {"all", "pixel", "vertex"})
+        ASSERT_TRUE(device.create_state_block(name, std::string(name) == "all"     ? StateBlockType::All
+                                                    : std::string(name) == "pixel" ? StateBlockType::PixelState
+                                                                                   : StateBlockType::VertexState));
+    const auto& ff = device.fixed_function();
+    struct Expect {
+        const char* block;
+        bool color_op, tci, view, material, light;
+    };
+    for (const Expect& e : {Expect{"all", true, true, true, true, true}, Expect{"pixel", true, true, false, false, false},
+                            Expect{"vertex", false, true, false, false, true}}) {
+        set_all(false);
+        ASSERT_TRUE(device.apply_state_block(e.block));
+        EXPECT_EQ(ff.stages[0][kTssColorOp], e.color_op ? 5u : kTopModulate) << e.block;
+        EXPECT_EQ(ff.stages[0][kTssTexCoordIndex], e.tci ? 3u : 0u) << e.block;
+        EXPECT_EQ(ff.view, e.view ? scale2 : identity_matrix()) << e.block;
+        EXPECT_EQ(ff.material, e.material ? red : Material{}) << e.block;
+        EXPECT_EQ(ff.lights.at(2), e.light ? point : Light{}) << e.block;
+    }
+    // A recorded block holds only what was set while recording.
+    set_all(false);
+    ASSERT_TRUE(device.begin_state_block());
+    ASSERT_TRUE(device.set_texture_stage_state(1, kTssColorArg1, kTaDiffuse));
+    ASSERT_TRUE(device.set_transform(kTransformProjection, scale2));
+    ASSERT_TRUE(device.end_state_block("recorded"));
+    EXPECT_EQ(ff.stages[1][kTssColorArg1], kTaTexture);  // EndStateBlock gives the state back
+    EXPECT_EQ(ff.projection, identity_matrix());
+    set_all(true);
+    ASSERT_TRUE(device.apply_state_block("recorded"));
+    EXPECT_EQ(ff.stages[1][kTssColorArg1], kTaDiffuse);
+    EXPECT_EQ(ff.projection, scale2);
+    EXPECT_EQ(ff.stages[0][kTssColorOp], 5u);  // not recorded: left as set
+    EXPECT_EQ(ff.view, scale2);
+}
+
+}  // namespace
+}  // namespace sm2::runtime
