@@ -36,6 +36,7 @@ namespace sm2::runtime {
 
 class WorkerPool;
 struct StateBlockObject;
+struct DeviceInspection;  // sm2/runtime/device_inspection.h
 
 // The HRESULT a refused call returns: D3DERR_INVALIDCALL for bad arguments and state,
 // D3DERR_OUTOFVIDEOMEMORY when a resource does not fit in DeviceOptions::memory_limit, and
@@ -297,6 +298,8 @@ public:
     [[nodiscard]] const emu::StaticFlowConstants& pixel_shader_flow_constants() const { return ps_flow_; }
     [[nodiscard]] const PixelRect& scissor_rect() const { return scissor_; }
     [[nodiscard]] const Vec4& clip_plane(uint32_t index) const { return clip_planes_.at(index); }
+    // Everything bound and set now, for sm2 state and sm2 replay --snapshot (device_inspection.cpp).
+    [[nodiscard]] DeviceInspection inspect() const;
 
     struct Resource;
     struct ShaderObject;
