@@ -270,4 +270,166 @@ TEST(CliState, CallsOutOfRangeAreRefused) {
     EXPECT_NE(missing.err.find("sm2 state"), std::string::npos) << missing.err;
 }
 
+// ---------------------------------------------------------------------------------------------
+// sm2 pixel
+
+// A 4x4 target cleared to (0, 0, 128/255, 1), then three full-screen quads (triangle strips:
+// primitive 0 the top-left half, x + y < 4 at pixel centres, primitive 1 the bottom-right):
+//   call 11: oC0 = (1, 0, 0, 1), no blending                       -> (1, 0, 0, 1)
+//   call 16: oC0 = (0, 0.5, 0, 1), blend ONE + ONE                  -> (1, 128/255, 0, 1)
+//   call 23: oC0 = (0, 0, 1, 0.25), scissor (0,0)-(2,2), alpha GREATER 128/255: pixels inside
+//            the scissor fail the alpha test, those outside are scissored; nothing changes.
+const std::string kTwoQuads =
+    "sm2cs 1\n"
+    "CreateDevice 4 4 A8R8G8B8\n"
+    "CreateVertexDeclaration decl { 0 0 FLOAT3 DEFAULT POSITION 0 }\n"
+    "CreateVertexShader vs asm<<END\nvs_2_0\ndcl_position v0\nmov oPos, v0\nEND\n"
+    "CreatePixelShader ps asm<<END\nps_2_0\nmov oC0, c0\nEND\n"
+    "SetVertexDeclaration decl\n"
+    "SetVertexShader vs\n"
+    "SetPixelShader ps\n"
+    "Clear TARGET 0xFF000080 1 0\n"
+    "BeginScene\n"
+    "SetPixelShaderConstantF 0 f32[ 1 0 0 1 ]\n"
+    "DrawPrimitiveUP TRIANGLESTRIP 2 12 f32[ -1 1 0.5   1 1 0.5   -1 -1 0.5   1 -1 0.5 ]\n"
+    "SetRenderState ALPHABLENDENABLE TRUE\n"
+    "SetRenderState SRCBLEND ONE\n"
+    "SetRenderState DESTBLEND ONE\n"
+    "SetPixelShaderConstantF 0 f32[ 0 0.5 0 1 ]\n"
+    "DrawPrimitiveUP TRIANGLESTRIP 2 12 f32[ -1 1 0.5   1 1 0.5   -1 -1 0.5   1 -1 0.5 ]\n"
+    "SetScissorRect 0 0 2 2\n"
+    "SetRenderState SCISSORTESTENABLE TRUE\n"
+    "SetRenderState ALPHATESTENABLE TRUE\n"
+    "SetRenderState ALPHAFUNC GREATER\n"
+    "SetRenderState ALPHAREF 128\n"
+    "SetPixelShaderConstantF 0 f32[ 0 0 1 0.25 ]\n"
+    "DrawPrimitiveUP TRIANGLESTRIP 2 12 f32[ -1 1 0.5   1 1 0.5   -1 -1 0.5   1 -1 0.5 ]\n"
+    "EndScene\n"
+    "Present\n";
+
+void expect_colour(const nlohmann::json& c, double r, double g, double b, double a, const std::string& what) {
+    ASSERT_TRUE(c.is_array() && c.size() == 4) << what << ": " << c.dump();
+    EXPECT_NEAR(c[0].get<double>(), r, 1e-6) << what;
+    EXPECT_NEAR(c[1].get<double>(), g, 1e-6) << what;
+    EXPECT_NEAR(c[2].get<double>(), b, 1e-6) << what;
+    EXPECT_NEAR(c[3].get<double>(), a, 1e-6) << what;
+}
+
+nlohmann::json pixel_json(const std::string& stream, int frame, const std::string& xy) {
+    const Result r = sm2("pixel " + stream + " --frame " + std::to_string(frame) + " --pixel " + xy + " --json");
+    EXPECT_EQ(r.status, 0) << r.err;
+    return nlohmann::json::parse(r.out, nullptr, false);
+}
+
+TEST(CliPixel, TwoQuadsBlendedByHand) {
+    const std::string stream = tmp("two_quads.sm2cs");
+    write_file(stream, kTwoQuads);
+    const double half = 128.0 / 255.0;
+    for (const auto& [xy, primitive] : {std::pair{std::string("3,2"), 1}, std::pair{std::string("0,1"), 0}}) {
+        const auto j = pixel_json(stream, 0, xy);
+        ASSERT_EQ(j["draws"].size(), 3u) << j.dump();
+        const auto& first = j["draws"][0]["fragments"];
+        EXPECT_EQ(j["draws"][0]["call"], 11);
+        ASSERT_EQ(first.size(), 1u);
+        EXPECT_EQ(first[0]["primitive"], primitive) << xy;
+        expect_colour(first[0]["shader_color"], 1, 0, 0, 1, xy + " call 11 shader");
+        expect_colour(first[0]["before"]["color"], 0, 0, half, 1, xy + " call 11 before (the clear)");
+        expect_colour(first[0]["after"]["color"], 1, 0, 0, 1, xy + " call 11 after");
+        EXPECT_EQ(first[0]["written"], true);
+        const auto& second = j["draws"][1]["fragments"][0];
+        EXPECT_EQ(j["draws"][1]["call"], 16);
+        expect_colour(second["shader_color"], 0, 0.5, 0, 1, xy + " call 16 shader");
+        expect_colour(second["before"]["color"], 1, 0, 0, 1, xy + " call 16 before");
+        expect_colour(second["after"]["color"], 1, half, 0, 1, xy + " call 16 after: red + 0.5 green");
+        const auto& third = j["draws"][2]["fragments"][0];
+        EXPECT_EQ(j["draws"][2]["call"], 23);
+        EXPECT_EQ(third["written"], false);
+        expect_colour(third["after"]["color"], 1, half, 0, 1, xy + " call 23 after: unchanged");
+        if (xy == "3,2") {  // outside the scissor rectangle
+            EXPECT_EQ(third["scissor"], "fail");
+            EXPECT_EQ(third["shaded"], false);
+            EXPECT_TRUE(third["alpha_test"].is_null());
+        } else {  // inside: shaded, alpha 0.25 is not GREATER than 128/255
+            EXPECT_EQ(third["scissor"], "pass");
+            expect_colour(third["shader_color"], 0, 0, 1, 0.25, xy + " call 23 shader");
+            EXPECT_EQ(third["alpha_test"], "fail");
+        }
+        expect_colour(j["final"], 1, half, 0, 1, xy + " final");
+        EXPECT_EQ(j["consistent"], true);
+    }
+    // The frame itself: every pixel (1, 128/255, 0, 1), as the history ends.
+    const std::string dir = fresh_folder("pixel_frame"), expected = tmp("pixel_frame.tga");
+    ASSERT_EQ(sm2("replay " + stream + " -o " + dir + " -q").status, 0);
+    write_tga(expected, 4, 4, 255, 128, 0, 255);
+    EXPECT_EQ(max_error(dir + "/frame_0000.png", expected), 0.0);
+}
+
+TEST(CliPixel, TextNamesEachTest) {
+    const std::string stream = tmp("two_quads_text.sm2cs");
+    write_file(stream, kTwoQuads);
+    const Result r = sm2("pixel " + stream + " --frame 0 --pixel 3,2");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("3 draws covered it"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("call 16 DrawPrimitiveUP, primitive 1:\n  shader: oC0 (0, 0.5, 0, 1)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("tests: scissor fail"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("final: (1, 0.501961, 0, 1)"), std::string::npos) << r.out;
+}
+
+TEST(CliPixel, ShaderSceneTraceStencilAndBlend) {
+    // shader_scene.trace frame 0, pixel (128, 128): call 49 draws the textured quad; call 64 writes
+    // stencil 1 with colour writes off (COLORWRITEENABLE 0, calls 54..58); call 73 blends a
+    // yellow quad (alpha 0.6) where the stencil is set; call 76's stencil test fails.
+    const auto j = pixel_json(kShaderTrace, 0, "128,128");
+    ASSERT_EQ(j["draws"].size(), 4u) << j.dump();
+    EXPECT_EQ(j["draws"][0]["call"], 49);
+    EXPECT_EQ(j["draws"][1]["call"], 64);
+    const auto& stencil = j["draws"][1]["fragments"][0];
+    EXPECT_EQ(stencil["before"]["stencil"], 0);
+    EXPECT_EQ(stencil["after"]["stencil"], 1);
+    EXPECT_EQ(stencil["before"]["color"], stencil["after"]["color"]);  // colour writes off
+    const auto& blended = j["draws"][2]["fragments"][0];
+    EXPECT_EQ(j["draws"][2]["call"], 73);
+    expect_colour(blended["shader_color"], 1, 0.9f, 0.1f, 0.6f, "call 73 shader");
+    // SRCALPHA / INVSRCALPHA: 0.6 * src + 0.4 * dst, in 8 bits, within one step.
+    for (int c = 0; c < 3; ++c) {
+        const double src = blended["shader_color"][c].get<double>(), dst = blended["before"]["color"][c].get<double>();
+        EXPECT_NEAR(blended["after"]["color"][c].get<double>(), 0.6 * src + 0.4 * dst, 1.0 / 255.0) << c;
+    }
+    const auto& failed = j["draws"][3]["fragments"][0];
+    EXPECT_EQ(failed["depth_stencil"], "fail");
+    EXPECT_EQ(failed["written"], false);
+    EXPECT_EQ(j["final"], failed["after"]["color"]);
+    EXPECT_EQ(j["consistent"], true);
+}
+
+TEST(CliPixel, EveryPixelOfASceneEndsAtItsFrame) {
+    // Scene 01 (one triangle over a grey clear): on the triangle, the history's last value is the
+    // frame's; off it, no draw covered the pixel and the final value is the clear colour.
+    const auto on = pixel_json(kScene01, 0, "128,100");
+    ASSERT_EQ(on["draws"].size(), 1u) << on.dump();
+    EXPECT_EQ(on["draws"][0]["call"], 17);
+    EXPECT_EQ(on["final"], on["draws"][0]["fragments"][0]["after"]["color"]);
+    expect_colour(on["draws"][0]["fragments"][0]["before"]["color"], 0x20 / 255.0, 0x20 / 255.0, 0x20 / 255.0, 1, "clear");
+    const auto off = pixel_json(kScene01, 0, "2,2");
+    EXPECT_TRUE(off["draws"].empty());
+    expect_colour(off["final"], 0x20 / 255.0, 0x20 / 255.0, 0x20 / 255.0, 1, "clear only");
+}
+
+TEST(CliPixel, BadInputIsRefused) {
+    const Result outside = sm2("pixel " + kScene01 + " --frame 0 --pixel 256,3");
+    EXPECT_EQ(outside.status, 1);
+    EXPECT_NE(outside.err.find("--pixel 256,3: outside the 256x256 back buffer"), std::string::npos) << outside.err;
+    const Result frame = sm2("pixel " + kScene01 + " --frame 1 --pixel 3,3");
+    EXPECT_EQ(frame.status, 1);
+    EXPECT_NE(frame.err.find("--frame 1: out of range: " + kScene01 + " presents 1 frame"), std::string::npos) << frame.err;
+    for (const char* bad : {"3", "3,", ",3", "a,b", "1,2,3", "-1,2"}) {
+        const Result r = sm2("pixel " + kScene01 + " --frame 0 --pixel '" + bad + "'");
+        EXPECT_EQ(r.status, 2) << bad;
+        EXPECT_NE(r.err.find("expected X,Y"), std::string::npos) << bad << ": " << r.err;
+    }
+    const Result trace = sm2("pixel " + kShaderTrace + " --frame 7 --pixel 1,1");
+    EXPECT_EQ(trace.status, 1);
+    EXPECT_NE(trace.err.find("presents 2 frames"), std::string::npos) << trace.err;
+}
+
 }  // namespace
