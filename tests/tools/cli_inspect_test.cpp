@@ -415,6 +415,57 @@ TEST(CliPixel, EveryPixelOfASceneEndsAtItsFrame) {
     expect_colour(off["final"], 0x20 / 255.0, 0x20 / 255.0, 0x20 / 255.0, 1, "clear only");
 }
 
+// Texkill and a late depth test (a shader with texkill tests depth after it runs), on a depth
+// buffer cleared to 0.25 with ZFUNC LESS; calls 12, 14 and 16 draw full-screen quads:
+//   call 12: c1 = (-1, 0, 0, 0): texkill discards; nothing is written
+//   call 14: depth 0.5, not less than 0.25: the depth test fails
+//   call 16: depth 0.1: passes, writes green and depth 0.1
+const std::string kKillAndDepth =
+    "sm2cs 1\n"
+    "CreateDevice 4 4 A8R8G8B8 D24S8\n"
+    "CreateVertexDeclaration decl { 0 0 FLOAT3 DEFAULT POSITION 0 }\n"
+    "CreateVertexShader vs asm<<END\nvs_2_0\ndcl_position v0\nmov oPos, v0\nEND\n"
+    "CreatePixelShader ps asm<<END\nps_2_0\nmov r0, c1\ntexkill r0\nmov oC0, c0\nEND\n"
+    "SetVertexDeclaration decl\n"
+    "SetVertexShader vs\n"
+    "SetPixelShader ps\n"
+    "Clear { TARGET ZBUFFER } 0xFF000000 0.25 0\n"
+    "SetRenderState ZFUNC LESS\n"
+    "BeginScene\n"
+    "SetPixelShaderConstantF 0 f32[ 1 1 1 1   -1 0 0 0 ]\n"
+    "DrawPrimitiveUP TRIANGLESTRIP 2 12 f32[ -1 1 0.1   1 1 0.1   -1 -1 0.1   1 -1 0.1 ]\n"
+    "SetPixelShaderConstantF 0 f32[ 1 0 0 1   1 1 1 1 ]\n"
+    "DrawPrimitiveUP TRIANGLESTRIP 2 12 f32[ -1 1 0.5   1 1 0.5   -1 -1 0.5   1 -1 0.5 ]\n"
+    "SetPixelShaderConstantF 0 f32[ 0 1 0 1   1 1 1 1 ]\n"
+    "DrawPrimitiveUP TRIANGLESTRIP 2 12 f32[ -1 1 0.1   1 1 0.1   -1 -1 0.1   1 -1 0.1 ]\n"
+    "EndScene\n"
+    "Present\n";
+
+TEST(CliPixel, TexkillAndALateDepthTest) {
+    const std::string stream = tmp("kill_depth.sm2cs");
+    write_file(stream, kKillAndDepth);
+    const auto j = pixel_json(stream, 0, "1,1");
+    ASSERT_EQ(j["draws"].size(), 3u) << j.dump();
+    const auto& killed = j["draws"][0]["fragments"][0];
+    EXPECT_EQ(j["draws"][0]["call"], 12);
+    EXPECT_EQ(killed["texkill"], "fail");
+    EXPECT_TRUE(killed["depth_stencil"].is_null());
+    EXPECT_EQ(killed["written"], false);
+    EXPECT_NEAR(killed["after"]["depth"].get<double>(), 0.25, 1e-6);
+    const auto& hidden = j["draws"][1]["fragments"][0];
+    EXPECT_EQ(hidden["texkill"], "pass");
+    EXPECT_EQ(hidden["early_depth_stencil"], false);
+    EXPECT_EQ(hidden["depth_stencil"], "fail");
+    EXPECT_NEAR(hidden["depth"].get<double>(), 0.5, 1e-6);
+    expect_colour(hidden["after"]["color"], 0, 0, 0, 1, "call 14 after: the clear");
+    const auto& drawn = j["draws"][2]["fragments"][0];
+    EXPECT_EQ(drawn["depth_stencil"], "pass");
+    EXPECT_EQ(drawn["written"], true);
+    EXPECT_NEAR(drawn["after"]["depth"].get<double>(), 0.1, 1e-6);
+    expect_colour(drawn["after"]["color"], 0, 1, 0, 1, "call 16 after");
+    expect_colour(j["final"], 0, 1, 0, 1, "final");
+}
+
 TEST(CliPixel, BadInputIsRefused) {
     const Result outside = sm2("pixel " + kScene01 + " --frame 0 --pixel 256,3");
     EXPECT_EQ(outside.status, 1);
