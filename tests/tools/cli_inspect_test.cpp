@@ -483,4 +483,22 @@ TEST(CliPixel, BadInputIsRefused) {
     EXPECT_NE(trace.err.find("presents 2 frames"), std::string::npos) << trace.err;
 }
 
+// The binary form: the same calls, numbers and results as the text form.
+TEST(CliInspect, BinaryStreamsAsText) {
+    const std::string binary = tmp("scene01.sm2cb");
+    ASSERT_EQ(sm2("cs pack " + kScene01 + " -o " + binary).status, 0);
+    const std::string text_dir = fresh_folder("bin_text"), binary_dir = fresh_folder("bin_binary");
+    ASSERT_EQ(sm2("replay " + kScene01 + " -o " + text_dir + " --snapshot '*/draw' -q").status, 0);
+    const Result r = sm2("replay " + binary + " -o " + binary_dir + " --snapshot '*/draw' -q");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(files_in(binary_dir), files_in(text_dir));
+    EXPECT_EQ(max_error(binary_dir + "/call_000017_frame_0_rt0.png", text_dir + "/call_000017_frame_0_rt0.png"), 0.0);
+    auto without_file = [](nlohmann::json j) {
+        j.erase("file");
+        return j;
+    };
+    EXPECT_EQ(without_file(state_json(binary, 17)), without_file(state_json(kScene01, 17)));
+    EXPECT_EQ(without_file(pixel_json(binary, 0, "128,100")), without_file(pixel_json(kScene01, 0, "128,100")));
+}
+
 }  // namespace
