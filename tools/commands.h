@@ -30,4 +30,10 @@ void add_diff_command(CLI::App& app, int& status);
 // Command-stream replay on the Device: `replay`, `bench`.
 void add_replay_commands(CLI::App& app, int& status);
 
+// The device state after one call: `state`.
+void add_state_command(CLI::App& app, int& status);
+
+// One pixel's history in a frame: `pixel`.
+void add_pixel_command(CLI::App& app, int& status);
+
 }  // namespace sm2::tools

@@ -143,6 +143,8 @@ int main(int argc, char** argv) {
     sm2::tools::add_stream_commands(app, status);
     sm2::tools::add_trace_commands(app, status);
     sm2::tools::add_replay_commands(app, status);
+    sm2::tools::add_state_command(app, status);
+    sm2::tools::add_pixel_command(app, status);
     sm2::tools::add_diff_command(app, status);
     for (const auto& e : kExamples)
         if (CLI::App* cmd = find_command(app, CLI::detail::split(e.path, ' '))) cmd->footer(e.text);

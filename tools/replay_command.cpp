@@ -16,12 +16,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "call_set.h"
 #include "commands.h"
 #include "image_compare.h"
 #include "io.h"
 #include "sm2/runtime/stream_assembler.h"
+#include "snapshot.h"
 #include "stream_io.h"
 #include "sm2/emu/jit.h"
+#include "sm2/runtime/image_io.h"
 #include "sm2/runtime/apitrace_import.h"
 #include "sm2/runtime/command_stream.h"
 #include "sm2/runtime/device.h"
@@ -125,7 +128,65 @@ struct ReplayCliOptions {
     std::string compare;  // golden folder
     ThresholdOptions thresholds;
     std::string stats;    // "", "table" or "json"
+    std::string snapshot;  // call set (call_set.h)
 };
+
+// --snapshot: after each call of the set, the bound render targets, depth and stencil as images
+// (snapshot.h), through ReplayOptions::after_call (nothing runs per pixel).
+class Snapshotter {
+public:
+    Snapshotter(CallSet set, std::string folder) : set_(std::move(set)), folder_(std::move(folder)) {}
+    // ReplayOptions::after_call; stops the replay when an image cannot be written.
+    bool after_call(const runtime::Device& device, const cs::Statement& statement, uint64_t call, bool accepted) {
+        if (!set_.contains(call, statement.name)) return true;
+        // A Present that ran has counted its frame already: it belongs to the frame it ends.
+        const uint32_t frame = device.frames_presented() - (accepted && statement.name == "Present" ? 1u : 0u);
+        try {
+            images_ += write_snapshot(device.inspect(), folder_, call, frame).size();
+        } catch (const runtime::ImageIoError& e) {
+            error_ = e.what();
+            return false;
+        }
+        // A trace call may replay as several statements: the call is counted once.
+        if (call != last_call_ || calls_ == 0) ++calls_;
+        last_call_ = call;
+        return true;
+    }
+    // Says what was written; false (and why on stderr) when nothing could be or nothing was selected.
+    bool report(const std::string& text, size_t calls_replayed) const {
+        if (error_) {
+            std::cerr << "sm2 replay: --snapshot: " << *error_ << '\n';
+            return false;
+        }
+        if (calls_ == 0) {
+            std::cerr << "sm2 replay: --snapshot '" << text << "': selects none of the " << calls_replayed
+                      << " calls replayed\n";
+            return false;
+        }
+        std::cout << "snapshots: " << calls_ << " call" << (calls_ == 1 ? "" : "s") << ", " << images_ << " images in "
+                  << folder_ << '\n';
+        return true;
+    }
+
+private:
+    CallSet set_;
+    std::string folder_;
+    std::optional<std::string> error_;
+    size_t calls_ = 0, images_ = 0;
+    uint64_t last_call_ = 0;
+};
+
+// The --snapshot call set, or nullopt after saying why it is not one.
+std::optional<std::optional<Snapshotter>> snapshotter_for(const ReplayCliOptions& o) {
+    if (o.snapshot.empty()) return std::optional<Snapshotter>();
+    std::string error;
+    auto set = CallSet::parse(o.snapshot, error);
+    if (!set) {
+        std::cerr << "sm2 replay: --snapshot: " << error << '\n';
+        return std::nullopt;
+    }
+    return std::optional<Snapshotter>(Snapshotter(std::move(*set), o.output));
+}
 
 // --stats: a row per draw, then the replay's totals.
 void print_draw_table(const runtime::ReplayResult& result) {
@@ -282,6 +343,8 @@ std::optional<int> prepare_output(const ReplayCliOptions& o) {
 // is built); skipped and refused calls are reported once per kind with their first call number.
 int run_replay_trace(const ReplayCliOptions& o) {
     namespace at = runtime::apitrace;
+    auto snapshots = snapshotter_for(o);
+    if (!snapshots) return kBadUsage;
     std::optional<at::Error> error;
     auto reader = at::Reader::open_file(o.stream, error);
     if (!reader) {
@@ -296,6 +359,10 @@ int run_replay_trace(const ReplayCliOptions& o) {
     runtime::ReplayOptions options;
     options.file_name = display_name(o.stream);
     options.assembler = runtime::stream_assembler();
+    if (*snapshots)
+        options.after_call = [&device, &snapshots](const cs::Statement& st, uint64_t call, bool accepted) {
+            return (*snapshots)->after_call(device, st, call, accepted);
+        };
     const auto start = std::chrono::steady_clock::now();
     const at::TraceReplay result = at::replay_trace(*reader, device, options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -312,12 +379,15 @@ int run_replay_trace(const ReplayCliOptions& o) {
         std::cerr << "sm2 replay: " << display_name(o.stream) << ": " << result.error->to_string() << '\n';
         return kInvalidInput;
     }
+    if (*snapshots && !(*snapshots)->report(o.snapshot, result.statements)) return kInvalidInput;
     return result.refused > 0 ? kInvalidInput : kOk;
 }
 
 int run_replay(const ReplayCliOptions& o) {
     if (!o.numeric.check("replay")) return kBadUsage;
     if (o.stream.ends_with(".trace")) return run_replay_trace(o);
+    auto snapshots = snapshotter_for(o);
+    if (!snapshots) return kBadUsage;
     if (o.stats == "json" && !o.compare.empty()) {
         std::cerr << "sm2 replay: --stats json keeps stdout for the JSON alone: run --compare separately\n";
         return kBadUsage;
@@ -354,6 +424,10 @@ int run_replay(const ReplayCliOptions& o) {
                         device.frames_presented());
     };
     options.per_draw_statistics = !o.stats.empty();
+    if (*snapshots)
+        options.after_call = [&device, &snapshots](const cs::Statement& st, uint64_t call, bool accepted) {
+            return (*snapshots)->after_call(device, st, call, accepted);
+        };
     runtime::Replayer replayer(device, options);
     const runtime::ReplayResult result = replayer.replay(loaded->stream);
     progress.finish();
@@ -377,6 +451,7 @@ int run_replay(const ReplayCliOptions& o) {
                   << " primitives, " << s.pixels_shaded << " pixels shaded, " << s.pipelines_built
                   << " pipelines built\n";
     print_diagnostics(result.diagnostics);
+    if (*snapshots && !(*snapshots)->report(o.snapshot, result.calls)) return kInvalidInput;
     if (comparer) {
         comparer->missing_frames(device.frames_presented());
         int status = comparer->status();
@@ -540,6 +615,10 @@ void add_replay_commands(CLI::App& app, int& status) {
                        "vertices, primitives and time; 'table' after the frames, or 'json' (stdout then holds the "
                        "JSON alone)")
         ->check(CLI::IsMember({"table", "json"}));
+    replay->add_option("--snapshot", r->snapshot,
+                       "After each call of this apitrace call set (10,20-30 / 0-100/5 / */draw / frame / @FILE), "
+                       "write DIR/call_NNNNNN_frame_F_rtI.png for each bound render target, _depth.exr (float) and "
+                       "_stencil.png (8-bit); calls numbered from 1 as --stats does (a trace's own numbers for .trace)");
     replay->callback([r, &status] { status = run_replay(*r); });
 
     auto b = std::make_shared<BenchCliOptions>();

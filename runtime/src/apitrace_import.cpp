@@ -919,10 +919,13 @@ ImportResult import_d3d9(Reader& reader, const StatementSink& sink) { return Imp
 TraceReplay replay_trace(Reader& reader, Device& device, const ReplayOptions& options) {
     TraceReplay result;
     Replayer replayer(device, options);
+    bool stopped = false;  // after_call asked for no more calls: the rest of the trace is only read
     const ImportResult imported = import_d3d9(reader, [&](const cs::Statement& statement, uint64_t call) {
-        if (statement.kind != cs::Statement::Kind::Call) return;
+        if (statement.kind != cs::Statement::Kind::Call || stopped) return;
         ++result.statements;
-        if (replayer.execute(statement, static_cast<size_t>(call))) return;
+        const bool accepted = replayer.execute(statement, static_cast<size_t>(call));
+        if (options.after_call && !options.after_call(statement, call, accepted)) stopped = true;
+        if (accepted) return;
         ++result.refused;
         const ReplayDiagnostic d = replayer.diagnostics().back();
         replayer.clear_diagnostics();

@@ -25,6 +25,7 @@
 #include "sm2/isa/validator.h"
 #include "sm2/runtime/interpolation.h"
 #include "sm2/runtime/output_merger.h"
+#include "sm2/runtime/pixel_history.h"
 #include "sm2/runtime/rasterizer.h"
 #include "sm2/runtime/setup.h"
 
@@ -125,8 +126,18 @@ struct TileWorker {
     uint64_t pixels_shaded = 0, pixels_rasterized = 0, pixels_killed = 0, pixels_written = 0;
 };
 
+// What draws see of their own work: nothing (every draw), or the watched pixel's stages
+// (PixelRecorder, only in a draw's second pass over that one pixel). Empty inline calls compile
+// away, so the draw's code is the same with and without pixel history.
+struct NoObserver {
+    void early_tested(emu::LaneMask) {}
+    void shaded(const emu::Batch&, emu::LaneMask) {}
+    void merged(emu::LaneMask) {}
+};
+
+template <class Observer>
 void shade_quads(const PixelPipeline& pipe, const PrimitiveSetup& prim, std::span<const Quad> quads,
-                 TileWorker& w) {
+                 TileWorker& w, Observer& observer) {
     interpolate(prim, quads, pipe.ps_varyings, w.batch, w.lanes);
     emu::LaneMask live = w.lanes.coverage;
     w.pixels_rasterized += static_cast<uint64_t>(std::popcount(live));
@@ -138,6 +149,7 @@ void shade_quads(const PixelPipeline& pipe, const PrimitiveSetup& prim, std::spa
         live = depth_stencil_test(pipe.merger.depth_stencil, pipe.targets.depth_stencil, w.lanes.x, w.lanes.y,
                                   w.lanes.depth, live, w.lanes.clockwise);
         input.depth_stencil_done = true;
+        observer.early_tested(live);
         if (!live) return;
     }
     w.batch.killed = 0;
@@ -152,23 +164,120 @@ void shade_quads(const PixelPipeline& pipe, const PrimitiveSetup& prim, std::spa
     }
     w.pixels_shaded += static_cast<uint64_t>(std::popcount(live));
     w.pixels_killed += static_cast<uint64_t>(std::popcount(live & w.batch.killed));
+    observer.shaded(w.batch, live);
     input.live = live;
     RenderTargets targets = pipe.targets;
-    w.pixels_written += static_cast<uint64_t>(std::popcount(merge(pipe.merger, targets, input)));
+    const emu::LaneMask written = merge(pipe.merger, targets, input);
+    observer.merged(written);
+    w.pixels_written += static_cast<uint64_t>(std::popcount(written));
 }
 
 void process_tile(const PixelPipeline& pipe, std::span<const PrimitiveSetup> setups,
                   std::span<const uint32_t> primitives, const PixelRect& region, TileWorker& w) {
+    NoObserver none;
     for (uint32_t index : primitives) {
         const PrimitiveSetup& prim = setups[index];
         w.quads.clear();
         rasterize(prim, region, w.quads);
         for (size_t q = 0; q < w.quads.size(); q += emu::kBatchQuads) {
             const size_t n = std::min<size_t>(emu::kBatchQuads, w.quads.size() - q);
-            shade_quads(pipe, prim, std::span<const Quad>(w.quads).subspan(q, n), w);
+            shade_quads(pipe, prim, std::span<const Quad>(w.quads).subspan(q, n), w, none);
         }
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Pixel history: a second pass of the draw over the watched pixel alone, through the same
+// rasterize / shade_quads / merge, after the pixel is given back its value from before the draw.
+
+// The watched pixel's stored values in every target.
+struct PixelValues {
+    std::array<Float4, kMaxRenderTargets> color{};
+    float depth = 0.0f;
+    uint32_t stencil = 0;
+};
+
+PixelValues read_pixel(const RenderTargets& targets, uint32_t x, uint32_t y) {
+    PixelValues v;
+    for (unsigned i = 0; i < kMaxRenderTargets; ++i)
+        if (targets.color[i] && x < targets.color[i]->width() && y < targets.color[i]->height())
+            v.color[i] = targets.color[i]->read(x, y);
+    if (const DepthStencilSurface* ds = targets.depth_stencil; ds && x < ds->width() && y < ds->height()) {
+        v.depth = ds->depth(x, y);
+        v.stencil = ds->stencil(x, y);
+    }
+    return v;
+}
+
+// Stored bytes, so that giving the pixel back its value is exact in every format.
+struct PixelBytes {
+    std::array<std::vector<std::byte>, kMaxRenderTargets> color;
+    uint32_t depth = 0, stencil = 0;
+};
+
+size_t texel_offset(const Surface& s, uint32_t x, uint32_t y) {
+    return static_cast<size_t>(y) * s.row_pitch() + static_cast<size_t>(x) * (s.row_pitch() / std::max(1u, s.width()));
+}
+
+PixelBytes save_pixel(const RenderTargets& targets, uint32_t x, uint32_t y) {
+    PixelBytes b;
+    for (unsigned i = 0; i < kMaxRenderTargets; ++i) {
+        const Surface* s = targets.color[i];
+        if (!s || x >= s->width() || y >= s->height()) continue;
+        const size_t bytes = s->row_pitch() / std::max(1u, s->width());
+        const auto first = s->bytes().begin() + static_cast<std::ptrdiff_t>(texel_offset(*s, x, y));
+        b.color[i].assign(first, first + static_cast<std::ptrdiff_t>(bytes));
+    }
+    if (const DepthStencilSurface* ds = targets.depth_stencil; ds && x < ds->width() && y < ds->height()) {
+        b.depth = ds->stored_depth(x, y);
+        b.stencil = ds->stencil(x, y);
+    }
+    return b;
+}
+
+void restore_pixel(const RenderTargets& targets, uint32_t x, uint32_t y, const PixelBytes& b) {
+    for (unsigned i = 0; i < kMaxRenderTargets; ++i) {
+        Surface* s = targets.color[i];
+        if (!s || b.color[i].empty()) continue;
+        std::copy(b.color[i].begin(), b.color[i].end(), s->bytes().begin() + static_cast<std::ptrdiff_t>(texel_offset(*s, x, y)));
+    }
+    if (DepthStencilSurface* ds = targets.depth_stencil; ds && x < ds->width() && y < ds->height()) {
+        ds->set_stored_depth(x, y, b.depth);
+        ds->set_stencil(x, y, b.stencil);
+    }
+}
+
+// Notes the watched lane's results as shade_quads runs.
+struct PixelRecorder {
+    uint32_t x = 0, y = 0;
+    const TileWorker* worker = nullptr;
+    PixelFragment* fragment = nullptr;
+
+    [[nodiscard]] int lane() const {
+        for (unsigned l = 0; l < worker->lanes.quad_count * 4 && l < emu::kBatchLanes; ++l)
+            if (worker->lanes.x[l] == static_cast<int32_t>(x) && worker->lanes.y[l] == static_cast<int32_t>(y)) return static_cast<int>(l);
+        return -1;
+    }
+    [[nodiscard]] bool has(emu::LaneMask mask) const {
+        const int l = lane();
+        return l >= 0 && (mask >> l & 1u);
+    }
+    void early_tested(emu::LaneMask live) {
+        fragment->early_depth_stencil = true;
+        fragment->depth_stencil_passed = has(live);
+    }
+    void shaded(const emu::Batch& batch, emu::LaneMask live) {
+        const int l = lane();
+        if (l < 0 || !(live >> l & 1u)) return;
+        fragment->shaded = true;
+        fragment->killed = batch.killed >> l & 1u;
+        for (unsigned t = 0; t < kMaxRenderTargets; ++t)
+            for (unsigned c = 0; c < 4; ++c) fragment->shader_color[t][c] = batch.render_target(t)[c][l];
+        fragment->depth = worker->lanes.depth[l];
+    }
+    void merged(emu::LaneMask written) { fragment->written = has(written); }
+};
+
 
 
 // Vertex stage: fetches each distinct vertex (in batches of 16 lanes), runs the vertex shader and
@@ -319,6 +428,77 @@ std::optional<isa::TextureType> isa_texture_type(TextureType type) {
     case TextureType::Volume: return isa::TextureType::Volume;
     }
     return std::nullopt;
+}
+
+// The draw's second pass over the watched pixel (run_draw, only while a watch is set): the pixel
+// gets back its value from before the draw, then each primitive covering it runs again through
+// rasterize and shade_quads restricted to that pixel, in draw order, recording each stage.
+void record_pixel_history(PixelWatch& watch, const PixelPipeline& pipe, PrimitiveType type, FillMode fill_mode,
+                          std::span<const Primitive> primitives, std::span<const ClipVertex> shaded,
+                          std::span<const uint32_t> slots, const ClipState& clip, const SetupState& setup_state,
+                          const SetupState& unscissored_state, bool scissor_test, const TextureSampler& sampler,
+                          const PixelBytes& before, bool shader_depth) {
+    PixelDraw& draw = watch.draws.back();
+    const uint32_t x = watch.x, y = watch.y;
+    const PixelValues drawn = read_pixel(pipe.targets, x, y);
+    restore_pixel(pipe.targets, x, y, before);
+    const PixelRect pixel{static_cast<int32_t>(x), static_cast<int32_t>(y), static_cast<int32_t>(x) + 1, static_cast<int32_t>(y) + 1};
+    TileWorker w;
+    w.sampler = sampler;
+    for (uint32_t p = 0; p < primitives.size(); ++p) {
+        const auto setups = setup_primitives(type, fill_mode, primitives.subspan(p, 1), shaded, slots, clip, setup_state);
+        bool covered = false;
+        for (const PrimitiveSetup& prim : setups) {
+            w.quads.clear();
+            rasterize(prim, pixel, w.quads);
+            if (w.quads.empty()) continue;
+            covered = true;
+            PixelFragment f;
+            f.primitive = p;
+            const PixelValues start = read_pixel(pipe.targets, x, y);
+            f.color_before = start.color;
+            f.depth_before = start.depth;
+            f.stencil_before = start.stencil;
+            PixelRecorder recorder{x, y, &w, &f};
+            shade_quads(pipe, prim, std::span<const Quad>(w.quads), w, recorder);
+            if (shader_depth && f.shaded) f.depth = w.batch.registers[emu::slot::kDepth][0][static_cast<size_t>(recorder.lane())];
+            // The late tests, in merge's order: alpha, then depth/stencil (both decided by what
+            // merge wrote: a pixel past the alpha test that wrote nothing failed depth/stencil).
+            if (f.shaded && !f.killed) {
+                if (pipe.merger.alpha_test) {
+                    const bool clamps = !pipe.targets.color[0] || !is_float_target(pipe.targets.color[0]->format());
+                    f.alpha_test_passed = alpha_test_passes(pipe.merger, f.shader_color[0][3], clamps);
+                }
+                if (!f.early_depth_stencil && pipe.merger.depth_stencil.active() && f.alpha_test_passed.value_or(true))
+                    f.depth_stencil_passed = f.written;
+            }
+            const PixelValues end = read_pixel(pipe.targets, x, y);
+            f.color_after = end.color;
+            f.depth_after = end.depth;
+            f.stencil_after = end.stencil;
+            draw.fragments.push_back(f);
+        }
+        if (!covered && scissor_test) {
+            // Outside the scissor rectangle: does the primitive cover the pixel without it?
+            for (const PrimitiveSetup& prim :
+                 setup_primitives(type, fill_mode, primitives.subspan(p, 1), shaded, slots, clip, unscissored_state)) {
+                w.quads.clear();
+                rasterize(prim, pixel, w.quads);
+                if (w.quads.empty()) continue;
+                PixelFragment f;
+                f.primitive = p;
+                f.scissored = true;
+                const PixelValues now = read_pixel(pipe.targets, x, y);
+                f.color_before = f.color_after = now.color;
+                f.depth_before = f.depth_after = now.depth;
+                f.stencil_before = f.stencil_after = now.stencil;
+                draw.fragments.push_back(f);
+                break;
+            }
+        }
+    }
+    const PixelValues recorded = read_pixel(pipe.targets, x, y);
+    draw.consistent = recorded.color == drawn.color && recorded.depth == drawn.depth && recorded.stencil == drawn.stencil;
 }
 
 }  // namespace
@@ -502,7 +682,24 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     }
     sampler.prepare();
     if (!pool_) pool_ = std::make_unique<WorkerPool>(options_.threads);
+    // Pixel history (sm2 pixel): one test per draw; the tiles run as they always do.
+    std::optional<PixelBytes> watched_before;
+    if (pixel_watch_) {
+        pixel_watch_->draws.push_back(PixelDraw{rt0, pixel_watch_->x < rt0->width() && pixel_watch_->y < rt0->height(), {}, true});
+        if (pixel_watch_->draws.back().inside) watched_before = save_pixel(targets, pixel_watch_->x, pixel_watch_->y);
+    }
     run_tiles(pipe, setups, bins, sampler, *pool_, stats_);
+    if (watched_before) {
+        RenderState unscissored_rs = render_state_;
+        unscissored_rs.scissor_test_enable = false;
+        SetupState unscissored = setup_state;
+        unscissored.clip_rect = make_setup_state(unscissored_rs, viewport_, rt0->width(), rt0->height(), scissor_).clip_rect;
+        const DrawStatistics counted = stats_;  // the second pass is not the draw's work
+        record_pixel_history(*pixel_watch_, pipe, type, render_state_.fill_mode, assembled.primitives, shaded,
+                             unique.slots, clip, setup_state, unscissored, render_state_.scissor_test_enable, sampler,
+                             *watched_before, pipe.merge_template.shader_depth);
+        stats_ = counted;
+    }
 
     stats_.pixel_seconds += lap(clock);
     ++stats_.draws;

@@ -924,6 +924,7 @@ ReplayResult Replayer::replay(const cs::Stream& stream) {
                 frame_stats = now_stats;
                 frame_calls = 0;
             }
+            if (options_.after_call && !options_.after_call(st, result.calls, ok)) break;
         }
         if (options_.progress) options_.progress(i + 1, total);
     }

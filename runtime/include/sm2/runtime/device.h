@@ -36,6 +36,8 @@ namespace sm2::runtime {
 
 class WorkerPool;
 struct StateBlockObject;
+struct DeviceInspection;  // sm2/runtime/device_inspection.h
+struct PixelWatch;        // sm2/runtime/pixel_history.h
 
 // The HRESULT a refused call returns: D3DERR_INVALIDCALL for bad arguments and state,
 // D3DERR_OUTOFVIDEOMEMORY when a resource does not fit in DeviceOptions::memory_limit, and
@@ -297,6 +299,11 @@ public:
     [[nodiscard]] const emu::StaticFlowConstants& pixel_shader_flow_constants() const { return ps_flow_; }
     [[nodiscard]] const PixelRect& scissor_rect() const { return scissor_; }
     [[nodiscard]] const Vec4& clip_plane(uint32_t index) const { return clip_planes_.at(index); }
+    // Everything bound and set now, for sm2 state and sm2 replay --snapshot (device_inspection.cpp).
+    [[nodiscard]] DeviceInspection inspect() const;
+    // Pixel history (sm2 pixel): while `watch` is set, each draw appends what its primitives did
+    // to pixel (watch->x, watch->y) of its render targets. Null (the default) turns it off.
+    void watch_pixel(PixelWatch* watch) { pixel_watch_ = watch; }
 
     struct Resource;
     struct ShaderObject;
@@ -355,6 +362,7 @@ private:
     std::unique_ptr<StateSelection> recording_;
     std::shared_ptr<StateBlockObject> state_before_recording_;  // given back at EndStateBlock
     uint32_t frame_ = 0;
+    PixelWatch* pixel_watch_ = nullptr;
     DrawStatistics stats_{};
     uint64_t memory_used_ = 0;
     TextureSampler sampler_;

@@ -67,6 +67,11 @@ struct ReplayOptions {
     // replay() records each draw's work in ReplayResult::draws (sm2 replay --stats); off, it
     // costs one test per call.
     bool per_draw_statistics = false;
+    // Called after each call, accepted or refused, with its call number: 1-based as
+    // ReplayResult::calls counts them for replay(), the trace's own number for replay_trace().
+    // Returning false stops the replay there (no later call runs). May be empty (sm2 replay
+    // --snapshot, sm2 state); per call, never per pixel.
+    std::function<bool(const cs::Statement& statement, uint64_t call, bool accepted)> after_call;
 };
 
 // One draw call's work (ReplayOptions::per_draw_statistics).
