@@ -133,6 +133,17 @@ constexpr unsigned kLightDiffuse = 0, kLightSpecular = 1, kLightAmbient = 2,
 
 std::array<float, 4> rgba(const ColorValue& c) { return {c.r, c.g, c.b, c.a}; }
 
+// A light's direction (the way it shines, in world space) into camera space by the view
+// matrix's rotation, reversed and normalized: the unit vector toward the light, w = 0 (zero for
+// a zero direction).
+std::array<float, 4> toward_light(const Vector3& d, const Matrix4& view) {
+    float v[3];
+    for (unsigned k = 0; k < 3; ++k) v[k] = -(d.x * view[0 * 4 + k] + d.y * view[1 * 4 + k] + d.z * view[2 * 4 + k]);
+    const float length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    const float k = length > 0 ? 1.0f / length : 0.0f;
+    return {v[0] * k, v[1] * k, v[2] * k, 0};
+}
+
 // The inverse of a row-major 3x3 matrix (zero for a singular one, as a degenerate world has no
 // meaningful normals).
 std::array<float, 9> inverse3(const std::array<float, 9>& m) {
@@ -297,13 +308,7 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
             if (light.type == LightType::Directional) {
                 // The direction the light shines, into camera space (the view matrix; D3D9
                 // light directions are in world space), reversed and normalized.
-                const Vector3 d = light.direction;
-                float v[3];
-                for (unsigned k = 0; k < 3; ++k)
-                    v[k] = -(d.x * ff.view[0 * 4 + k] + d.y * ff.view[1 * 4 + k] + d.z * ff.view[2 * 4 + k]);
-                const float length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-                const float k = length > 0 ? 1.0f / length : 0.0f;
-                constants[base + kLightVector] = {v[0] * k, v[1] * k, v[2] * k, 0};
+                constants[base + kLightVector] = toward_light(light.direction, ff.view);
                 b.op(Opcode::Mov, rd(6, kXYZ), {c(base + kLightVector)});
                 b.op(Opcode::Mov, rd(6, kW), {c(kVcOne, kSwizzleW)});
             } else {
@@ -329,13 +334,7 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
                     // D3D9 "Spotlight model": rho = L . -direction; 1 inside the inner cone
                     // (rho > cos(theta/2)), 0 outside the outer one (rho <= cos(phi/2)), else
                     // ((rho - cos(phi/2)) / (cos(theta/2) - cos(phi/2)))^falloff.
-                    const Vector3 d = light.direction;
-                    float axis[3];
-                    for (unsigned k = 0; k < 3; ++k)
-                        axis[k] = -(d.x * ff.view[0 * 4 + k] + d.y * ff.view[1 * 4 + k] + d.z * ff.view[2 * 4 + k]);
-                    const float length = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
-                    const float k = length > 0 ? 1.0f / length : 0.0f;
-                    constants[base + kLightSpotAxis] = {axis[0] * k, axis[1] * k, axis[2] * k, 0};
+                    constants[base + kLightSpotAxis] = toward_light(light.direction, ff.view);
                     const float cos_theta = std::cos(light.theta / 2), cos_phi = std::cos(light.phi / 2);
                     // theta >= phi: no penumbra, a step at the outer cone.
                     const float scale = cos_theta > cos_phi ? 1.0f / (cos_theta - cos_phi) : 1e30f;
