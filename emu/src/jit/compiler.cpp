@@ -315,8 +315,10 @@ public:
         result_ = new_scratch(vector_type);
 
         defs_.clear();
+        std::map<unsigned, std::array<float, 4>> values;
         for (const auto& [index, value] : executable.defs())
-            if (index < executable.constant_count()) defs_[index] = value;  // the last def wins, as in bind_constants
+            if (index < executable.constant_count()) values[index] = value;  // the last def wins, as in bind_constants
+        for (const auto& [index, value] : values) defs_[index] = def_global(value);
         const auto steps = executable.steps();
         const bool fast = executable.transcendentals() == Transcendentals::Fast;
         for (const Step& step : steps) {
@@ -373,7 +375,7 @@ private:
             // it (0 * x, pow's integer exponent) fold away.
             if (auto def = defs_.find(s.index); def != defs_.end())
                 return call("sm2_k_fetch_constant",
-                            {scratch, def_global(def->second), u32(0), u32(s.swizzle), u32(s.negate), u32(s.channels)});
+                            {scratch, def->second, u32(0), u32(s.swizzle), u32(s.negate), u32(s.channels)});
             return call("sm2_k_fetch_constant",
                         {scratch, constants_, u32(s.index), u32(s.swizzle), u32(s.negate), u32(s.channels)});
         case OperandKind::RelativeConstant:
@@ -436,7 +438,7 @@ private:
     llvm::Value* constant_count_ = nullptr;
     llvm::Value* sampler_ = nullptr;
     llvm::Value* sample_ = nullptr;
-    std::map<unsigned, std::array<float, 4>> defs_;  // register -> def value
+    std::map<unsigned, llvm::Value*> defs_;  // def'd register -> its value as a module constant
     std::array<llvm::AllocaInst*, 3> sources_{};
     llvm::AllocaInst* result_ = nullptr;
 };
