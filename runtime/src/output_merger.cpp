@@ -425,6 +425,8 @@ Vec4 blend(const BlendState& b, const Vec4& src_in, const Vec4& dst, bool fixed_
     return r;
 }
 
+// Cloned for x86-64-v4: its per-lane loops (keys, offsets, the depth clamp) vectorize with AVX-512.
+__attribute__((target_clones("arch=x86-64-v4", "default")))
 emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const MergeInput& in) {
     const emu::Batch& batch = *in.batch;
     const PixelLanes& lanes = *in.lanes;

@@ -989,7 +989,7 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
             const __m512 top = _mm512_fmadd_ps(block_field(tap_word(q, 1, ch.high), ch), ax, _mm512_mul_ps(block_field(tap_word(q, 0, ch.high), ch), bxi));
             const __m512 bottom = _mm512_fmadd_ps(block_field(tap_word(q, 3, ch.high), ch), ax, _mm512_mul_ps(block_field(tap_word(q, 2, ch.high), ch), bxi));
             const __m512 sum = _mm512_fmadd_ps(bottom, ay, _mm512_mul_ps(top, byi));
-            exact_sum = _mm512_mul_ps(unorm8::quotient(sum, ch.max), _mm512_set1_ps(1.0f / 65536.0f));
+            exact_sum = unorm8::quotient(sum, ch.max, 1.0f / 65536.0f);
             if (!bordered) {
                 out[k] = exact_sum;
                 continue;

@@ -35,10 +35,12 @@ SM2_AVX512 inline __m512 decode(__m512 byte) {
 
 // The same for a field of n <= 16 bits: v / max with max = 2^n - 1, its reciprocal corrected
 // once by the residual; correctly rounded for every v of every n from 1 to 16 (checked
-// exhaustively by sampler_block_test).
-SM2_AVX512 inline __m512 quotient(__m512 value, float max) {
-    const __m512 divisor = _mm512_set1_ps(max);
-    const __m512 reciprocal = _mm512_set1_ps(1.0f / max);
+// exhaustively by sampler_block_test). `scale`, a power of two, multiplies the result for free:
+// every step is the unscaled one times `scale` (exact away from subnormals), so the result is
+// quotient(value, max) * scale bit for bit.
+SM2_AVX512 inline __m512 quotient(__m512 value, float max, float scale = 1.0f) {
+    const __m512 divisor = _mm512_set1_ps(max / scale);
+    const __m512 reciprocal = _mm512_set1_ps(1.0f / max * scale);
     const __m512 q = _mm512_mul_ps(value, reciprocal);
     const __m512 residual = _mm512_fnmadd_ps(q, divisor, value);
     return _mm512_fmadd_ps(residual, reciprocal, q);

@@ -328,5 +328,38 @@ TEST(SamplerBlockPath, EverySixteenBitFieldDecodesAsTheDivision) {
     expect_every_field_value(Format::G16R16, 16, 16, 1);
 }
 
+// The exact bilinear sums S of fixed8 filtering (an integer below 2^24 for fields of n <= 8
+// bits) become S / (max * 65536) through unorm8::quotient with the 2^-16 folded into its
+// constants: every S of every field width must give IEEE division's float, bit for bit.
+// (GCC 12's AVX-512 headers trip -Wuninitialized on their own _mm512_undefined_*() self-init.)
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+SM2_AVX512 void expect_every_bilinear_sum_divides_exactly(uint32_t bits) {
+    const uint32_t max = (1u << bits) - 1u;
+    const uint32_t largest = max * 65536u;  // every tap at max, weights summing to 65536
+    const __m512i step = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    alignas(64) std::array<float, emu::kBatchLanes> got;
+    for (uint32_t first = 0; first <= largest; first += emu::kBatchLanes) {
+        const __m512 sum = _mm512_cvtepi32_ps(_mm512_add_epi32(_mm512_set1_epi32(static_cast<int32_t>(first)), step));
+        _mm512_store_ps(got.data(), unorm8::quotient(sum, static_cast<float>(max), 1.0f / 65536.0f));
+        for (unsigned l = 0; l < emu::kBatchLanes && first + l <= largest; ++l) {
+            volatile float numerator = static_cast<float>(first + l);
+            const float expected = numerator / static_cast<float>(largest);
+            ASSERT_EQ(std::bit_cast<uint32_t>(got[l]), std::bit_cast<uint32_t>(expected)) << bits << "-bit sum " << first + l;
+        }
+    }
+}
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+
+TEST(SamplerBlockPath, EveryFixed8BilinearSumDividesAsTheDivision) {
+    if (!cpu_has_avx512()) GTEST_SKIP() << "no AVX-512 on this CPU";
+    for (const uint32_t bits : {8u, 6u, 5u, 4u, 1u}) expect_every_bilinear_sum_divides_exactly(bits);
+}
+
 }  // namespace
 }  // namespace sm2::runtime
