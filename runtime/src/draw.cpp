@@ -114,6 +114,7 @@ struct PixelPipeline {
     RenderTargets targets{};
     MergeInput merge_template{};
     bool early_depth_stencil = false;
+    bool reference_paths = false;  // DeviceOptions::reference_paths: the portable interpolation
     const TextureSampler* sampler = nullptr;
 };
 
@@ -150,7 +151,7 @@ static_assert(lanes_in(0) == 0 && lanes_in(0xFFFF) == 16 && lanes_in(0x8001) == 
 template <class Observer>
 void shade_quads(const PixelPipeline& pipe, const PrimitiveSetup& prim, std::span<const Quad> quads,
                  TileWorker& w, Observer& observer) {
-    interpolate(prim, quads, pipe.ps_varyings, w.batch, w.lanes);
+    interpolate(prim, quads, pipe.ps_varyings, w.batch, w.lanes, pipe.reference_paths);
     emu::LaneMask live = w.lanes.coverage;
     w.pixels_rasterized += lanes_in(live);
     MergeInput input = pipe.merge_template;
@@ -672,6 +673,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
             if (written[slot::kRenderTargetFirst + i]) pipe.merge_template.color_outputs |= static_cast<uint8_t>(1u << i);
     pipe.merge_template.shader_depth = ps && written[slot::kDepth] != 0;
     pipe.merge_template.generic_path = options_.reference_paths;
+    pipe.reference_paths = options_.reference_paths;
     const bool kills = ps_object && ps_object->texkill;
     pipe.early_depth_stencil = merger.depth_stencil.active() && !pipe.merge_template.shader_depth && !kills &&
                                !merger.alpha_test;

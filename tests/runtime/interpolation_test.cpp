@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
+#include <random>
 
 #include <vector>
 
@@ -162,6 +164,53 @@ void expect_exact_perspective(float w_far) {
 
 TEST(Interpolation, ExactPerspectiveAtPixelCentresForW1To4) { expect_exact_perspective(4.0f); }
 TEST(Interpolation, ExactPerspectiveAtPixelCentresForW1To100) { expect_exact_perspective(100.0f); }
+
+// The AVX-512 code and the portable loops (reference = true) give the same bits for every
+// lane's depth, fog and varyings: random triangles with random w (perspective) or one w
+// (affine), depth bias, every batch of their quads.
+TEST(Interpolation, VectorCodeGivesThePortableLoopsBits) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> position(-20.0f, 36.0f), value(-4.0f, 4.0f), depth(0.0f, 1.0f);
+    size_t lanes_compared = 0;
+    for (unsigned round = 0; round < 300; ++round) {
+        const bool affine = round % 3 == 0;
+        std::array<ClipVertex, 3> v;
+        for (ClipVertex& c : v) {
+            const float w = affine ? 2.0f : std::uniform_real_distribution<float>(0.05f, 50.0f)(rng);
+            c = at(position(rng), position(rng), depth(rng), w);
+            for (auto& varying : c.varyings)
+                for (float& x : varying) x = value(rng);
+        }
+        SetupState s = state16();
+        s.depth_bias = round % 4 == 0 ? 0.0625f : 0.0f;
+        PrimitiveSetup p;
+        if (!setup_triangle(v[0], v[1], v[2], v[0], s, p)) continue;
+        EXPECT_EQ(p.perspective, !affine);
+        std::vector<Quad> quads;
+        rasterize(p, PixelRect{0, 0, 16, 16}, quads);
+        for (size_t first = 0; first < quads.size(); first += emu::kBatchQuads) {
+            const size_t n = std::min<size_t>(emu::kBatchQuads, quads.size() - first);
+            emu::Batch fast, portable;
+            PixelLanes fast_lanes, portable_lanes;
+            interpolate(p, std::span(quads).subspan(first, n), kAllVaryings, fast, fast_lanes, false);
+            interpolate(p, std::span(quads).subspan(first, n), kAllVaryings, portable, portable_lanes, true);
+            for (unsigned lane = 0; lane < 4 * n; ++lane) {
+                ASSERT_EQ(std::bit_cast<uint32_t>(fast_lanes.depth[lane]), std::bit_cast<uint32_t>(portable_lanes.depth[lane]));
+                ASSERT_EQ(std::bit_cast<uint32_t>(fast_lanes.fog[lane]), std::bit_cast<uint32_t>(portable_lanes.fog[lane]));
+                for (unsigned r = 0; r < 2; ++r)
+                    for (unsigned c = 0; c < 4; ++c)
+                        ASSERT_EQ(std::bit_cast<uint32_t>(fast.input(r)[c][lane]), std::bit_cast<uint32_t>(portable.input(r)[c][lane]))
+                            << "v" << r << " component " << c << " lane " << lane << " round " << round;
+                for (unsigned t = 0; t < 8; ++t)
+                    for (unsigned c = 0; c < 4; ++c)
+                        ASSERT_EQ(std::bit_cast<uint32_t>(fast.texcoord(t)[c][lane]), std::bit_cast<uint32_t>(portable.texcoord(t)[c][lane]))
+                            << "t" << t << " component " << c << " lane " << lane << " round " << round;
+                ++lanes_compared;
+            }
+        }
+    }
+    EXPECT_GT(lanes_compared, 10000u);
+}
 
 TEST(Interpolation, DepthBiasIsInTheDepth) {
     SetupState s = state16();

@@ -34,7 +34,9 @@ struct PixelLanes {
 
 // Packs quads[0..n) (n <= emu::kBatchQuads) into lanes 4q..4q+3 and writes the ps inputs the
 // mask selects (other registers are left as they are); sets batch.lane_count = 4n.
+// reference: the portable loops even where AVX-512 code would run (the same bits; tests and
+// DeviceOptions::reference_paths compare the two).
 void interpolate(const PrimitiveSetup& prim, std::span<const Quad> quads, uint16_t varyings,
-                 emu::Batch& batch, PixelLanes& lanes);
+                 emu::Batch& batch, PixelLanes& lanes, bool reference = false);
 
 }  // namespace sm2::runtime
