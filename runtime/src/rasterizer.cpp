@@ -128,26 +128,29 @@ void rasterize(const PrimitiveSetup& p, const PixelRect& region, std::vector<Qua
             }
             return;
         }
+        // Each quad's mask without branches: per edge, its sign at the quad's four pixels (bit i
+        // = pixel (qx + (i & 1), qy + (i >> 1))), ANDed with the pixels inside r.
+        std::array<int64_t, 3> dx{}, dy{}, step{};
+        for (unsigned e = 0; e < 3; ++e) {
+            dx[e] = p.edges[e].a * kSubPixelScale;
+            dy[e] = p.edges[e].b * kSubPixelScale;
+            step[e] = 2 * dx[e];
+        }
         for (int32_t qy = even_floor(r.top); qy < r.bottom; qy += 2) {
             const int64_t Y = static_cast<int64_t>(qy) * kSubPixelScale;
+            const unsigned rows = (qy >= r.top ? 0x3u : 0u) | (qy + 1 < r.bottom ? 0xCu : 0u);
             std::array<int64_t, 3> row{};  // E at (qx, qy), stepped along the row
             const int32_t qx0 = even_floor(r.left);
             for (unsigned e = 0; e < 3; ++e) row[e] = p.edges[e].at(static_cast<int64_t>(qx0) * kSubPixelScale, Y);
             for (int32_t qx = qx0; qx < r.right; qx += 2) {
-                uint8_t mask = 0;
-                for (unsigned i = 0; i < 4; ++i) {
-                    const int32_t px = qx + static_cast<int32_t>(i & 1u), py = qy + static_cast<int32_t>(i >> 1);
-                    if (!inside(r, px, py)) continue;
-                    bool in = true;
-                    for (unsigned e = 0; e < 3 && in; ++e) {
-                        const EdgeFunction& f = p.edges[e];
-                        const int64_t v = row[e] + (i & 1u ? f.a * kSubPixelScale : 0) + (i >> 1 ? f.b * kSubPixelScale : 0);
-                        in = v >= 0;
-                    }
-                    if (in) mask = static_cast<uint8_t>(mask | (1u << i));
+                unsigned mask = rows & ((qx >= r.left ? 0x5u : 0u) | (qx + 1 < r.right ? 0xAu : 0u));
+                for (unsigned e = 0; e < 3; ++e) {
+                    const int64_t v = row[e];
+                    mask &= (v >= 0 ? 1u : 0u) | (v + dx[e] >= 0 ? 2u : 0u) | (v + dy[e] >= 0 ? 4u : 0u) |
+                            (v + dx[e] + dy[e] >= 0 ? 8u : 0u);
+                    row[e] += step[e];
                 }
-                if (mask) quads.push_back({qx, qy, mask});
-                for (unsigned e = 0; e < 3; ++e) row[e] += 2 * p.edges[e].a * kSubPixelScale;
+                if (mask) quads.push_back({qx, qy, static_cast<uint8_t>(mask)});
             }
         }
         return;
