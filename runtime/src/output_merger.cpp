@@ -270,6 +270,39 @@ void blend_batch(const BlendState& b, const Rgba<Lanes>& src, const Rgba<Lanes>&
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 
+// The lanes of `live` inside a width x height target, and whether their pixels are pairwise
+// different (distinct_pixels()), in AVX-512 registers: the keys, the quad-order test and, for
+// batches in quad order, the two comparisons with the keys rotated by one and by two quads.
+struct LanePlaces {
+    emu::LaneMask write = 0;
+    bool distinct = false;
+};
+SM2_AVX512 LanePlaces lane_places_avx512(const PixelLanes& lanes, emu::LaneMask live, uint32_t width, uint32_t height) {
+    const __m512i x = _mm512_load_si512(lanes.x.data()), y = _mm512_load_si512(lanes.y.data());
+    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    // Negative coordinates compare as values above any size.
+    const __mmask16 inside = static_cast<__mmask16>(live) &
+                             _mm512_cmplt_epu32_mask(x, _mm512_set1_epi32(static_cast<int32_t>(width))) &
+                             _mm512_cmplt_epu32_mask(y, _mm512_set1_epi32(static_cast<int32_t>(height)));
+    const __m512i outside_key = _mm512_or_si512(lane, _mm512_set1_epi32(INT32_MIN));  // unlike every pixel
+    const __m512i key = _mm512_mask_add_epi32(outside_key, inside,
+                                              _mm512_mullo_epi32(y, _mm512_set1_epi32(static_cast<int32_t>(width))), x);
+    const __m512i one = _mm512_set1_epi32(1);
+    const __m512i place = _mm512_or_si512(_mm512_and_si512(x, one), _mm512_slli_epi32(_mm512_and_si512(y, one), 1));
+    const __mmask16 misplaced = _mm512_mask_cmpneq_epi32_mask(inside, place, _mm512_and_si512(lane, _mm512_set1_epi32(3)));
+    LanePlaces r;
+    r.write = inside;
+    if (misplaced == 0) {
+        const __m512i by_one_quad = _mm512_alignr_epi32(key, key, 4), by_two_quads = _mm512_alignr_epi32(key, key, 8);
+        r.distinct = (_mm512_cmpeq_epi32_mask(key, by_one_quad) | _mm512_cmpeq_epi32_mask(key, by_two_quads)) == 0;
+    } else {
+        std::array<uint32_t, kLanes> keys;
+        _mm512_storeu_si512(keys.data(), key);
+        r.distinct = distinct_pixels(keys, false);
+    }
+    return r;
+}
+
 // saturate() for 16 lanes: NaN and -0 -> +0.
 SM2_AVX512 inline __m512 saturate16(__m512 v) {
     const __m512 c = _mm512_maskz_mov_ps(_mm512_cmp_ps_mask(v, _mm512_setzero_ps(), _CMP_GT_OQ), v);
@@ -473,16 +506,24 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
         // The live lanes inside the surface, and a key per lane that differs between pixels (one
         // vectorized loop: no branches).
         emu::LaneMask write = 0;
-        std::array<uint32_t, kLanes> key;
-        uint32_t misplaced = 0;  // a lane not at its place in a 2x2 quad (see distinct_pixels)
+        bool distinct = false;
         const uint32_t width = surface->width(), height = surface->height();
-        for (unsigned l = 0; l < kLanes; ++l) {
-            // Negative coordinates wrap to values above any size.
-            const auto x = static_cast<uint32_t>(lanes.x[l]), y = static_cast<uint32_t>(lanes.y[l]);
-            const bool inside = ((live & kLaneBit[l]) != 0) & (x < width) & (y < height);
-            write |= inside ? kLaneBit[l] : 0u;
-            key[l] = inside ? y * width + x : 0x80000000u | l;  // outside: unlike every pixel (16384^2 < 2^31)
-            misplaced |= inside && ((x & 1u) | (y & 1u) << 1) != (l & 3u) ? 1u : 0u;
+        if (cpu_has_avx512()) {
+            const LanePlaces places = lane_places_avx512(lanes, live, width, height);
+            write = places.write;
+            distinct = places.distinct;
+        } else {
+            std::array<uint32_t, kLanes> key;
+            uint32_t misplaced = 0;  // a lane not at its place in a 2x2 quad (see distinct_pixels)
+            for (unsigned l = 0; l < kLanes; ++l) {
+                // Negative coordinates wrap to values above any size.
+                const auto x = static_cast<uint32_t>(lanes.x[l]), y = static_cast<uint32_t>(lanes.y[l]);
+                const bool inside = ((live & kLaneBit[l]) != 0) & (x < width) & (y < height);
+                write |= inside ? kLaneBit[l] : 0u;
+                key[l] = inside ? y * width + x : 0x80000000u | l;  // outside: unlike every pixel (16384^2 < 2^31)
+                misplaced |= inside && ((x & 1u) | (y & 1u) << 1) != (l & 3u) ? 1u : 0u;
+            }
+            distinct = distinct_pixels(key, misplaced == 0);
         }
         if (!write) continue;
         Rgba<Lanes> other;
@@ -492,7 +533,7 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
 
         if (!srgb && !in.generic_path) {
             const Unorm8Texel& fmt = unorm8_texel(*info);
-            if ((fmt.valid || (fmt.wide && cpu_has_avx512())) && distinct_pixels(key, misplaced == 0)) {
+            if ((fmt.valid || (fmt.wide && cpu_has_avx512())) && distinct) {
                 if (cpu_has_avx512() && surface->bytes().size() <= size_t{INT32_MAX}) {
                     std::array<int32_t, kLanes> offset;  // used for the lanes in `write` only
                     const auto pitch = static_cast<uint32_t>(surface->row_pitch());
