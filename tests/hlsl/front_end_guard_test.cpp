@@ -37,6 +37,7 @@ void expect_front_end_crash_reported(const sm2::hlsl::CompileResult& result) {
     EXPECT_NE(d.message.find("the HLSL front end (glslang) crashed on this input (with signal 11)"),
               std::string::npos)
         << d.message;
+    EXPECT_EQ(d.fxc_code, 3000u);
 }
 
 }  // namespace
