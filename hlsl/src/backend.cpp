@@ -505,9 +505,13 @@ private:
             std::array<float, 4> values{};
             if (c.opcode == op::ConstantComposite)
                 for (uint32_t k = 0; k < t.component_count && k + 2 < c.words.size(); ++k) values[k] = scalar_of(c.words[k + 2]);
-            // A splat reads better (and shares a register) as a scalar.
-            if (std::all_of(values.begin(), values.begin() + t.component_count, [&](float x) { return std::memcmp(&x, &values[0], 4) == 0; }))
-                return literal(values[0]);
+            // A splat reads better (and shares a register) as a scalar, replicated by the swizzle.
+            if (std::all_of(values.begin(), values.begin() + t.component_count, [&](float x) { return std::memcmp(&x, &values[0], 4) == 0; })) {
+                Value splat = literal(values[0]);
+                splat.swizzle.fill(splat.swizzle[0]);
+                splat.count = t.component_count;
+                return splat;
+            }
             return literal_vector(values, t.component_count);
         }
         if (t.opcode == op::TypeBool) {
@@ -636,6 +640,8 @@ private:
                     info.register_index = static_cast<uint16_t>(next);
                     info.register_count = static_cast<uint16_t>(size);
                     info.type = constant_type(pointee.members[m], spirv_row_major);
+                    if (info.type.parameter_type == isa::parameter_type::Int && declared_bool(info.name))
+                        info.type.parameter_type = isa::parameter_type::Bool;
                     if (auto values = literal_initializer(info.name))
                         info.default_value = default_registers(info.type, info.register_count, *values);
                     constants_table_.push_back(std::move(info));
@@ -669,6 +675,17 @@ private:
     // initializers from the SPIR-V, so the default values for the constant table are read from
     // the text; anything else (an expression, a macro) gives none.
     std::optional<std::vector<float>> literal_initializer(const std::string& name) const {
+        const auto at = global_declaration(name);
+        if (!at) return std::nullopt;
+        const size_t end = source_.find(';', *at);
+        const size_t equals = source_.find('=', *at);  // past `: register(c0)` or a semantic
+        if (end == std::string_view::npos || equals > end) return std::nullopt;
+        return literal_numbers(source_.substr(equals + 1, end - equals - 1));
+    }
+
+    // Where `name` first appears outside braces and parentheses (comments skipped): the global's
+    // declaration, since uses are inside function bodies.
+    std::optional<size_t> global_declaration(const std::string& name) const {
         int braces = 0, parentheses = 0;
         for (size_t i = 0; i < source_.size(); ++i) {
             if (source_.compare(i, 2, "//") == 0) {
@@ -682,18 +699,23 @@ private:
             const char c = source_[i];
             braces += c == '{' ? 1 : c == '}' ? -1 : 0;
             parentheses += c == '(' ? 1 : c == ')' ? -1 : 0;
-            if (braces != 0 || parentheses != 0 || source_.compare(i, name.size(), name) != 0 ||
-                (i > 0 && is_identifier_char(source_[i - 1])) ||
-                (i + name.size() < source_.size() && is_identifier_char(source_[i + name.size()])))
-                continue;
-            size_t at = i + name.size();
-            const size_t end = source_.find(';', at);
-            if (end == std::string_view::npos) return std::nullopt;
-            at = source_.find('=', at);  // past `: register(c0)` or a semantic
-            if (at == std::string_view::npos || at > end) continue;
-            return literal_numbers(source_.substr(at + 1, end - at - 1));
+            if (braces == 0 && parentheses == 0 && source_.compare(i, name.size(), name) == 0 &&
+                (i == 0 || !is_identifier_char(source_[i - 1])) &&
+                (i + name.size() >= source_.size() || !is_identifier_char(source_[i + name.size()])))
+                return i;
         }
         return std::nullopt;
+    }
+
+    // glslang stores a bool uniform as a 32-bit unsigned integer; the declaration says which.
+    bool declared_bool(const std::string& name) const {
+        const auto at = global_declaration(name);
+        if (!at) return false;
+        size_t end = *at;
+        while (end > 0 && std::isspace(static_cast<unsigned char>(source_[end - 1]))) --end;
+        size_t begin = end;
+        while (begin > 0 && is_identifier_char(source_[begin - 1])) --begin;
+        return source_.substr(begin, end - begin).rfind("bool", 0) == 0;
     }
 
     static bool is_identifier_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }

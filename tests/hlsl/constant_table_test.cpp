@@ -132,3 +132,18 @@ TEST(HlslConstantTable, InitializersThatAreNotLiteralsGiveNoDefault) {
     expect_constant(*found->table, {"k", ConstantRegisterSet::Float4, 0, 1, parameter_class::Vector, parameter_type::Float, 1, 4, 1, {}});
     expect_constant(*found->table, {"j", ConstantRegisterSet::Float4, 1, 1, parameter_class::Vector, parameter_type::Float, 1, 4, 1, {}});
 }
+
+TEST(HlslConstantTable, BoolAndIntUniformsTakeFloatRegisters) {
+    // glslang stores a bool member as an unsigned int; the table names it bool, from the source.
+    // Defaults are floats, as in any c# register: true = 1, 3 = 3.
+    sm2::hlsl::CompileOptions options;
+    const auto result = sm2::hlsl::compile(
+        "bool flag = true;\nint count = 3;\nfloat4 tint;\nfloat4 main() : COLOR { return tint; }\n", options);
+    ASSERT_TRUE(result.ok()) << messages(result);
+    const auto found = sm2::isa::find_constant_table(*result.program);
+    ASSERT_TRUE(found.has_value() && found->ok());
+    const auto F4 = ConstantRegisterSet::Float4;
+    expect_constant(*found->table, {"flag", F4, 0, 1, parameter_class::Scalar, parameter_type::Bool, 1, 1, 1, {1, 0, 0, 0}});
+    expect_constant(*found->table, {"count", F4, 1, 1, parameter_class::Scalar, parameter_type::Int, 1, 1, 1, {3, 0, 0, 0}});
+    expect_constant(*found->table, {"tint", F4, 2, 1, parameter_class::Vector, parameter_type::Float, 1, 4, 1, {}});
+}

@@ -61,6 +61,20 @@ TEST(HlslCompile, ConstantColourPixelShader) {
     expect_near(run_output(ps, "", "oC0"), {1, 0.5f, 0.25f, 1});
 }
 
+TEST(HlslCompile, SplatConstantFillsTheWholeOutput) {
+    // A vector of equal literals is one def component seen through a replicate swizzle, here the
+    // second one (0.5 comes first): uv.x * 0.5 + 0.25 = 0.75 in every component for uv.x = 1.
+    const auto ps = compile("splat",
+                            "float4 main(float2 uv : TEXCOORD0) : COLOR {\n"
+                            "  return uv.x * 0.5 + float4(0.25, 0.25, 0.25, 0.25);\n}\n", "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "--input t0=1,0", "oC0"), {0.75f, 0.75f, 0.75f, 0.75f});
+    // A scalar returned as float4 is the same splat.
+    const auto scalar = compile("splat_scalar", "float4 main() : COLOR { return 0.5; }\n", "ps_2_0");
+    ASSERT_FALSE(scalar.empty());
+    expect_near(run_output(scalar, "", "oC0"), {0.5f, 0.5f, 0.5f, 0.5f});
+}
+
 TEST(HlslCompile, VertexShaderTransformsAndPassesTexcoord) {
     // float4x4 is column_major: c0..c3 hold M's columns, so mul(pos, M).j = dot(pos, c_j):
     // pos (1,2,3,1) -> (1, 4, 9, 1+2+3+1 = 7). uv * 2: (0.25, 0.75) -> (0.5, 1.5).
