@@ -18,6 +18,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace sm2::hlsl {
 
@@ -328,6 +329,16 @@ SpirvModule front_end_failure(const CompileOptions& options, const std::string& 
 SpirvModule hlsl_to_spirv(std::string_view source, const CompileOptions& options) {
     static std::mutex front_end_mutex;
     const std::lock_guard lock(front_end_mutex);
+    // glslang builds its table of HLSL built-ins on a stage's first parse and keeps it for the
+    // process; built once here from a fixed shader, every child inherits it instead of rebuilding
+    // it (the bulk of a compile's time).
+    static bool warm[2] = {false, false};
+    if (!std::exchange(warm[options.stage == isa::ShaderType::Vertex], true)) {
+        CompileOptions warm_up = options;
+        warm_up.entry_point = "main";
+        warm_up.defines.clear();
+        (void)hlsl_to_spirv_unguarded("float4 main() : POSITION { return 0; }\n", warm_up);
+    }
     int fds[2];
     if (::pipe(fds) != 0)
         return front_end_failure(options, std::string("cannot start the HLSL front end: pipe: ") + std::strerror(errno));
