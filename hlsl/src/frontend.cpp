@@ -5,6 +5,7 @@
 #include <glslang/SPIRV/GlslangToSpv.h>
 #include <spirv-tools/optimizer.hpp>
 
+#include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -119,6 +120,7 @@ void add_glslang_log(const std::string& log, const std::string& file, std::vecto
             d.message = rest;
         }
         if (d.line > 0 && d.column == 0) d.column = 1;
+        d.message.erase(d.message.find_last_not_of(" \t\r") + 1);  // glslang ends most with a space
         out.push_back(std::move(d));
     }
 }
@@ -340,7 +342,7 @@ SpirvModule hlsl_to_spirv(std::string_view source, const CompileOptions& options
         (void)hlsl_to_spirv_unguarded("float4 main() : POSITION { return 0; }\n", warm_up);
     }
     int fds[2];
-    if (::pipe(fds) != 0)
+    if (::pipe2(fds, O_CLOEXEC) != 0)  // not inherited by programs other threads start
         return front_end_failure(options, std::string("cannot start the HLSL front end: pipe: ") + std::strerror(errno));
     const pid_t child = ::fork();
     if (child < 0) {

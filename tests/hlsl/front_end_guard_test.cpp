@@ -6,6 +6,8 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "sm2/hlsl/compiler.h"
 
@@ -66,4 +68,25 @@ TEST(HlslFrontEndGuard, ErrorsAndCodeComeBackFromTheChildProcess) {
     const auto good = compile_pixel_shader("float4 main() : COLOR { return float4(1, 0.5, 0.25, 1); }\n");
     ASSERT_TRUE(good.ok());
     EXPECT_NE(good.assembly.find("def c0, 1, 0.5, 0.25, 1"), std::string::npos) << good.assembly;
+}
+
+TEST(HlslFrontEndGuard, ThreadsCompilingAtOnceGetTheSameBytecode) {
+    // The front end forks under a mutex: concurrent compiles (a good shader, a crashing one) each
+    // get their own answer, and the good one's tokens never differ.
+    const std::string good = "float4 tint;\nfloat4 main(float2 uv : TEXCOORD0) : COLOR { return tint * uv.x; }\n";
+    const auto reference = compile_pixel_shader(good);
+    ASSERT_TRUE(reference.ok());
+    std::vector<int> matches(4, 0), crashes_reported(4, 0);
+    std::vector<std::thread> threads;
+    for (size_t t = 0; t < 4; ++t)
+        threads.emplace_back([&, t] {
+            for (int k = 0; k < 5; ++k) {
+                matches[t] += compile_pixel_shader(good).tokens == reference.tokens ? 1 : 0;
+                const auto crashed = compile_pixel_shader("float4 x; float3 x;\n");
+                crashes_reported[t] += !crashed.ok() && crashed.diagnostics.size() == 1 ? 1 : 0;
+            }
+        });
+    for (auto& thread : threads) thread.join();
+    EXPECT_EQ(matches, std::vector<int>(4, 5));
+    EXPECT_EQ(crashes_reported, std::vector<int>(4, 5));
 }

@@ -277,7 +277,7 @@ TEST(HlslCompile, FxcErrorsCarryFxcNumbers) {
         return r.err;
     };
     const std::string syntax = errors_of("fxc_syntax.hlsl", "float4 main() : COLOR {\n  return 1 +;\n}\n", "ps_2_0");
-    EXPECT_EQ(syntax.rfind(tmp("fxc_syntax.hlsl") + "(2,1): error X3000: 'expression' : Expected", 0), 0u) << syntax;
+    EXPECT_EQ(syntax.rfind(tmp("fxc_syntax.hlsl") + "(2,1): error X3000: 'expression' : Expected\n", 0), 0u) << syntax;
     const std::string undeclared =
         errors_of("fxc_undeclared.hlsl", "float4 main() : COLOR {\n  return undefined_thing;\n}\n", "ps_2_0");
     EXPECT_NE(undeclared.find("fxc_undeclared.hlsl(2,1): error X3004: 'undefined_thing' : unknown variable"),
