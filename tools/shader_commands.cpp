@@ -268,6 +268,7 @@ struct CompileCommandOptions {
     std::string entry = "main";
     std::vector<std::string> defines;
     std::vector<std::string> include_dirs;
+    bool fxc_errors = false;
 };
 
 // Empty when `define` is NAME or NAME=VALUE with NAME an identifier.
@@ -324,7 +325,11 @@ int run_compile(const CompileCommandOptions& o) {
     }
     const auto result = hlsl::compile(as_text(*bytes), options);
     for (const auto& d : result.diagnostics) {
-        // fxc's form, file(line,col): error: message, which IDEs parse.
+        if (o.fxc_errors) {
+            std::cerr << hlsl::format_fxc(d) << '\n';
+            continue;
+        }
+        // fxc's form without its error number, file(line,col): error: message, which IDEs parse.
         std::cerr << d.file;
         if (d.line > 0) std::cerr << '(' << d.line << ',' << d.column << ')';
         std::cerr << ": " << (d.severity == assembler::Severity::Error ? "error" : d.severity == assembler::Severity::Warning ? "warning" : "note")
@@ -386,6 +391,8 @@ void add_shader_commands(CLI::App& app, int& status) {
         ->check(CLI::IsMember({"bin", "hex", "c"}));
     compile_cmd->add_option("--name", compile_options->array_name, "Array name for --format c (a C identifier)")
         ->check(CLI::Validator(c_identifier_error, "C identifier", "C identifier"));
+    compile_cmd->add_flag("--fxc-errors", compile_options->fxc_errors,
+                          "Print errors with fxc's numbers: file(line,col): error X3000: message");
     compile_cmd->callback([compile_options, &status] { status = run_compile(*compile_options); });
 }
 

@@ -5,15 +5,20 @@
 // sequences (and nrm/pow/crs, whose dest may not be a source) are safe.
 #include "backend.h"
 
+#include "sm2/isa/constant_table.h"
+
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <optional>
 #include <regex>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -23,7 +28,7 @@ namespace {
 
 // SPIR-V numbers used below (SPIR-V specification, §3).
 namespace op {
-constexpr uint32_t Undef = 1, Line = 8, ExtInst = 12, EntryPoint = 15, TypeVoid = 19,
+constexpr uint32_t Undef = 1, Name = 5, MemberName = 6, Line = 8, ExtInst = 12, EntryPoint = 15, TypeVoid = 19,
                    TypeBool = 20, TypeInt = 21, TypeFloat = 22, TypeVector = 23, TypeMatrix = 24,
                    TypeImage = 25, TypeSampledImage = 27, TypeArray = 28, TypeStruct = 30, TypePointer = 32,
                    ConstantTrue = 41, ConstantFalse = 42, Constant = 43, ConstantComposite = 44,
@@ -49,6 +54,7 @@ constexpr uint32_t FAbs = 4, Floor = 8, Fract = 10, Sin = 13, Cos = 14, Pow = 26
 constexpr uint32_t kStorageUniformConstant = 0, kStorageInput = 1, kStorageUniform = 2, kStorageOutput = 3;
 constexpr uint32_t kBuiltInPosition = 0;
 constexpr int kTempCount = 12;  // r0-r11 in both vs_2_0 and ps_2_0
+constexpr const char* kCreator = "sm2emu sm2 compile (glslang HLSL, SPIRV-Tools, sm2 back end)";
 
 
 struct SpirvInstruction {
@@ -190,6 +196,12 @@ private:
                 break;
             case op::MemberDecorate:
                 if (ins.words.size() >= 3) member_decorations_[ins.words[0]][ins.words[1]].insert(ins.words[2]);
+                break;
+            case op::Name:
+                if (ins.words.size() >= 2) names_[ins.words[0]] = literal_string(ins.words, 1);
+                break;
+            case op::MemberName:
+                if (ins.words.size() >= 3) member_names_[{ins.words[0], ins.words[1]}] = literal_string(ins.words, 2);
                 break;
             case op::Function: in_function = ins.words.at(1) == entry_function_ || in_function; break;
             case op::FunctionEnd: in_function = false; break;
@@ -493,9 +505,13 @@ private:
             std::array<float, 4> values{};
             if (c.opcode == op::ConstantComposite)
                 for (uint32_t k = 0; k < t.component_count && k + 2 < c.words.size(); ++k) values[k] = scalar_of(c.words[k + 2]);
-            // A splat reads better (and shares a register) as a scalar.
-            if (std::all_of(values.begin(), values.begin() + t.component_count, [&](float x) { return std::memcmp(&x, &values[0], 4) == 0; }))
-                return literal(values[0]);
+            // A splat reads better (and shares a register) as a scalar, replicated by the swizzle.
+            if (std::all_of(values.begin(), values.begin() + t.component_count, [&](float x) { return std::memcmp(&x, &values[0], 4) == 0; })) {
+                Value splat = literal(values[0]);
+                splat.swizzle.fill(splat.swizzle[0]);
+                splat.count = t.component_count;
+                return splat;
+            }
             return literal_vector(values, t.component_count);
         }
         if (t.opcode == op::TypeBool) {
@@ -615,9 +631,21 @@ private:
             const Type& pointee = types_.at(pointee_id);
             if (storage == kStorageUniform && pointee.opcode == op::TypeStruct) {
                 for (size_t m = 0; m < pointee.members.size(); ++m) {
-                    member_register_[{pointee_id, static_cast<uint32_t>(m)}] = next;
-                    const auto& md = member_decorations_[pointee_id][static_cast<uint32_t>(m)];
-                    next += register_size(pointee.members[m], md.count(decoration::RowMajor) > 0);
+                    const auto member = static_cast<uint32_t>(m);
+                    member_register_[{pointee_id, member}] = next;
+                    const bool spirv_row_major = member_decorations_[pointee_id][member].count(decoration::RowMajor) > 0;
+                    const uint32_t size = register_size(pointee.members[m], spirv_row_major);
+                    isa::ConstantInfo info;
+                    info.name = member_name(pointee_id, member);
+                    info.register_index = static_cast<uint16_t>(next);
+                    info.register_count = static_cast<uint16_t>(size);
+                    info.type = constant_type(pointee.members[m], spirv_row_major);
+                    if (info.type.parameter_type == isa::parameter_type::Int && declared_bool(info.name))
+                        info.type.parameter_type = isa::parameter_type::Bool;
+                    if (auto values = literal_initializer(info.name))
+                        info.default_value = default_registers(info.type, info.register_count, *values);
+                    constants_table_.push_back(std::move(info));
+                    next += size;
                 }
             } else if (storage == kStorageUniformConstant && pointee.opcode == op::TypeSampledImage) {
                 auto d = decorations_.find(id);
@@ -630,9 +658,185 @@ private:
                 }
                 if (s > 15) throw CompileError("sampler register s" + std::to_string(s) + " is past s15");
                 sampler_of_[id] = s;
+                isa::ConstantInfo info;
+                info.name = names_.count(id) ? names_.at(id) : "sampler" + std::to_string(s);
+                info.register_set = isa::ConstantRegisterSet::Sampler;
+                info.register_index = static_cast<uint16_t>(s);
+                info.register_count = 1;
+                info.type = constant_type(pointee_id, false);
+                constants_table_.push_back(std::move(info));
             }
         }
         first_def_register_ = next;
+    }
+
+    // A global's initializer when the source writes it as literal numbers: `= 0.5`,
+    // `= float4(1, 2, 0, -1)`, `= {1, 2, 3, 4}` (booleans as 1 and 0). glslang drops uniform
+    // initializers from the SPIR-V, so the default values for the constant table are read from
+    // the text; anything else (an expression, a macro) gives none.
+    std::optional<std::vector<float>> literal_initializer(const std::string& name) const {
+        const auto at = global_declaration(name);
+        if (!at) return std::nullopt;
+        const size_t end = source_.find(';', *at);
+        const size_t equals = source_.find('=', *at);  // past `: register(c0)` or a semantic
+        if (end == std::string_view::npos || equals > end) return std::nullopt;
+        return literal_numbers(source_.substr(equals + 1, end - equals - 1));
+    }
+
+    // Where `name` first appears outside braces and parentheses (comments skipped): the global's
+    // declaration, since uses are inside function bodies.
+    std::optional<size_t> global_declaration(const std::string& name) const {
+        int braces = 0, parentheses = 0;
+        for (size_t i = 0; i < source_.size(); ++i) {
+            if (source_.compare(i, 2, "//") == 0) {
+                i = std::min(source_.find('\n', i), source_.size());
+                continue;
+            }
+            if (source_.compare(i, 2, "/*") == 0) {
+                i = std::min(source_.find("*/", i + 2), source_.size()) + 1;
+                continue;
+            }
+            const char c = source_[i];
+            braces += c == '{' ? 1 : c == '}' ? -1 : 0;
+            parentheses += c == '(' ? 1 : c == ')' ? -1 : 0;
+            if (braces == 0 && parentheses == 0 && source_.compare(i, name.size(), name) == 0 &&
+                (i == 0 || !is_identifier_char(source_[i - 1])) &&
+                (i + name.size() >= source_.size() || !is_identifier_char(source_[i + name.size()])))
+                return i;
+        }
+        return std::nullopt;
+    }
+
+    // glslang stores a bool uniform as a 32-bit unsigned integer; the declaration says which.
+    bool declared_bool(const std::string& name) const {
+        const auto at = global_declaration(name);
+        if (!at) return false;
+        size_t end = *at;
+        while (end > 0 && std::isspace(static_cast<unsigned char>(source_[end - 1]))) --end;
+        size_t begin = end;
+        while (begin > 0 && is_identifier_char(source_[begin - 1])) --begin;
+        return source_.substr(begin, end - begin).rfind("bool", 0) == 0;
+    }
+
+    static bool is_identifier_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
+    // "float4(1, 2, 0, -1)", "{1, 2}", "0.5f", "true": the numbers; nullopt for anything else.
+    static std::optional<std::vector<float>> literal_numbers(std::string_view text) {
+        std::string list(text);
+        const size_t open = list.find('(');
+        if (open != std::string::npos) {  // a constructor: TYPE( ... )
+            const size_t close = list.rfind(')');
+            const std::string type = list.substr(0, open);
+            if (close == std::string::npos || close < open ||
+                !std::all_of(type.begin(), type.end(), [](char c) { return is_identifier_char(c) || std::isspace(static_cast<unsigned char>(c)); }) ||
+                list.find_first_not_of(" \t\r\n", close + 1) != std::string::npos)
+                return std::nullopt;
+            list = list.substr(open + 1, close - open - 1);
+        }
+        std::replace(list.begin(), list.end(), '{', ' ');
+        std::replace(list.begin(), list.end(), '}', ' ');
+        std::vector<float> values;
+        std::istringstream items(list);
+        std::string item;
+        while (std::getline(items, item, ',')) {
+            const size_t first = item.find_first_not_of(" \t\r\n");
+            if (first == std::string::npos) return std::nullopt;
+            item = item.substr(first, item.find_last_not_of(" \t\r\n") - first + 1);
+            if (item == "true" || item == "false") {
+                values.push_back(item == "true" ? 1.0f : 0.0f);
+                continue;
+            }
+            if (!item.empty() && (item.back() == 'f' || item.back() == 'F' || item.back() == 'h' || item.back() == 'H'))
+                item.pop_back();
+            char* stop = nullptr;
+            const float value = std::strtof(item.c_str(), &stop);
+            if (item.empty() || stop != item.c_str() + item.size()) return std::nullopt;
+            values.push_back(value);
+        }
+        if (values.empty()) return std::nullopt;
+        return values;
+    }
+
+    // The initializer's values in register order, four DWORDs per register: a vector or scalar per
+    // element; a matrix (values written row by row, as HLSL does) one row per register when
+    // row_major, one column per register otherwise. A single value fills the whole type, as HLSL
+    // promotes a scalar. Empty when the count does not match the type.
+    static std::vector<uint32_t> default_registers(const isa::ConstantType& type, uint32_t register_count,
+                                                   std::vector<float> values) {
+        const bool matrix = type.parameter_class == isa::parameter_class::MatrixRows ||
+                            type.parameter_class == isa::parameter_class::MatrixColumns;
+        if (type.parameter_class == isa::parameter_class::Struct || type.parameter_class == isa::parameter_class::Object)
+            return {};
+        const size_t per_element = size_t{type.rows} * type.columns;
+        const size_t wanted = per_element * type.elements;
+        if (values.size() == 1) values.assign(wanted, values[0]);
+        if (values.size() != wanted) return {};
+        std::vector<float> registers(size_t{register_count} * 4, 0.0f);
+        const size_t registers_per_element = register_count / std::max<uint32_t>(type.elements, 1);
+        for (size_t e = 0; e < type.elements; ++e)
+            for (size_t r = 0; r < type.rows; ++r)
+                for (size_t c = 0; c < type.columns; ++c) {
+                    const float value = values[e * per_element + r * type.columns + c];
+                    const bool by_column = matrix && type.parameter_class == isa::parameter_class::MatrixColumns;
+                    const size_t reg = e * registers_per_element + (by_column ? c : matrix ? r : 0);
+                    const size_t component = by_column ? r : c;
+                    registers.at(reg * 4 + component) = value;
+                }
+        std::vector<uint32_t> words(registers.size());
+        std::memcpy(words.data(), registers.data(), words.size() * 4);
+        return words;
+    }
+
+    std::string member_name(uint32_t struct_id, uint32_t member) const {
+        auto it = member_names_.find({struct_id, member});
+        return it != member_names_.end() && !it->second.empty() ? it->second : "member" + std::to_string(member);
+    }
+
+    // The CTAB type of a uniform. glslang turns HLSL's floatRxC into a SPIR-V matrix of R vectors
+    // of C components and flips the packing: HLSL's default column_major is SPIR-V RowMajor.
+    isa::ConstantType constant_type(uint32_t type_id, bool spirv_row_major) const {
+        const Type& t = types_.at(type_id);
+        isa::ConstantType c;
+        c.rows = c.columns = c.elements = 1;
+        switch (t.opcode) {
+        case op::TypeBool: c.parameter_type = isa::parameter_type::Bool; break;
+        case op::TypeInt: c.parameter_type = isa::parameter_type::Int; break;
+        case op::TypeFloat: c.parameter_type = isa::parameter_type::Float; break;
+        case op::TypeVector:
+            c = constant_type(t.element, spirv_row_major);
+            c.parameter_class = isa::parameter_class::Vector;
+            c.columns = static_cast<uint16_t>(t.component_count);
+            break;
+        case op::TypeMatrix:
+            c = constant_type(t.element, spirv_row_major);
+            c.parameter_class = spirv_row_major ? isa::parameter_class::MatrixColumns : isa::parameter_class::MatrixRows;
+            c.rows = static_cast<uint16_t>(t.component_count);
+            break;
+        case op::TypeArray:
+            c = constant_type(t.element, spirv_row_major);
+            c.elements = static_cast<uint16_t>(t.component_count);
+            break;
+        case op::TypeStruct:
+            c.parameter_class = isa::parameter_class::Struct;
+            c.parameter_type = isa::parameter_type::Void;
+            c.columns = 0;
+            for (size_t m = 0; m < t.members.size(); ++m) {
+                const auto member = static_cast<uint32_t>(m);
+                isa::ConstantMember entry{member_name(type_id, member), constant_type(t.members[m], false)};
+                c.columns = static_cast<uint16_t>(c.columns + entry.type.rows * entry.type.columns * entry.type.elements);
+                c.members.push_back(std::move(entry));
+            }
+            break;
+        case op::TypeSampledImage: {
+            static constexpr uint16_t kByDim[] = {isa::parameter_type::Sampler1D, isa::parameter_type::Sampler2D,
+                                                  isa::parameter_type::Sampler3D, isa::parameter_type::SamplerCube};
+            c.parameter_class = isa::parameter_class::Object;
+            c.parameter_type = t.image_dim < 4 ? kByDim[t.image_dim] : isa::parameter_type::Sampler;
+            break;
+        }
+        default: throw CompileError("a uniform of a type the constant table cannot describe");
+        }
+        return c;
     }
 
     Value pointer_load(const Value& p) {
@@ -1291,6 +1495,7 @@ private:
     void finish(AssemblyOutput& out) {
         std::vector<std::string> head;
         head.push_back(profile());
+        for (auto& line : constant_table_comment()) head.push_back(std::move(line));
         for (const auto& [reg, text] : declarations_) head.push_back(text);
         static const char* kTypes[] = {"dcl_2d", "dcl_2d", "dcl_volume", "dcl_cube"};
         for (const auto& [s, dim] : samplers_used_)
@@ -1314,6 +1519,28 @@ private:
         }
     }
 
+    // The CTAB comment block as an assembler `comment` directive, eight DWORDs to a line.
+    std::vector<std::string> constant_table_comment() const {
+        isa::ConstantTable table;
+        table.creator = kCreator;
+        table.version = (pixel_ ? 0xFFFF0000u : 0xFFFE0000u) | 0x0200u;
+        table.target = profile();
+        table.constants = constants_table_;
+        const std::vector<uint32_t> payload = isa::serialize_constant_table(table);
+        std::vector<std::string> lines;
+        for (size_t k = 0; k < payload.size(); k += 8) {
+            std::string line = k == 0 ? "comment " : "        ";
+            for (size_t j = k; j < std::min(k + 8, payload.size()); ++j) {
+                char word[16];
+                std::snprintf(word, sizeof word, "0x%08x", payload[j]);
+                line += std::string(j > k ? ", " : "") + word;
+            }
+            if (k + 8 < payload.size()) line += ",";
+            lines.push_back(std::move(line));
+        }
+        return lines;
+    }
+
     const std::vector<uint32_t>& spirv_;
     std::string_view source_;
     const CompileOptions& options_;
@@ -1330,6 +1557,9 @@ private:
     std::map<uint32_t, std::pair<uint32_t, uint32_t>> variables_;  // id -> (pointer type, storage); ordered by id = declaration order
     std::vector<SpirvInstruction> body_;
 
+    std::unordered_map<uint32_t, std::string> names_;
+    std::map<std::pair<uint32_t, uint32_t>, std::string> member_names_;
+    std::vector<isa::ConstantInfo> constants_table_;  // registers in declaration order, samplers
     std::map<std::pair<uint32_t, uint32_t>, uint32_t> member_register_;
     std::map<uint32_t, int> sampler_of_;
     std::map<int, uint32_t> samplers_used_;

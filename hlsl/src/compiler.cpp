@@ -1,10 +1,73 @@
 #include "sm2/hlsl/compiler.h"
 
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+
 #include "backend.h"
 #include "frontend.h"
 #include "sm2/assembler/assembler.h"
 
 namespace sm2::hlsl {
+
+namespace {
+
+// Where a diagnostic came from: glslang (parse, link), the back end, or the assembler's validator.
+enum class Stage { FrontEnd, BackEnd, Validation };
+
+struct FxcCodeRule {
+    Stage stage;
+    const char* fragment;  // in the message (glslang's wording or ours)
+    uint32_t code;
+};
+
+// fxc's numbers for the same errors, first match wins; docs/hlsl.md lists them.
+constexpr FxcCodeRule kFxcCodes[] = {
+    {Stage::FrontEnd, "undeclared identifier", 3004},
+    {Stage::FrontEnd, "unknown variable", 3004},  // glslang's wording
+    {Stage::FrontEnd, "redefinition", 3003},
+    {Stage::FrontEnd, "no matching overloaded function", 3013},
+    {Stage::FrontEnd, "cannot convert", 3017},
+    {Stage::FrontEnd, "not convertible", 3017},
+    {Stage::FrontEnd, "include", 1507},  // fxc: failed to open source file
+    {Stage::FrontEnd, "entry point", 3501},
+    {Stage::BackEnd, "temporary registers", 4505},  // fxc: maximum temp register index exceeded
+    {Stage::BackEnd, "constant registers", 4550},
+    {Stage::Validation, "arithmetic instruction slot", 5608},
+    {Stage::Validation, "instruction slot", 5609},
+};
+
+// Anything else: a syntax or semantic error (X3000), or an expression the profile cannot express
+// (X4532, "cannot map expression to ps_2_0 instruction set").
+uint32_t fxc_code(Stage stage, std::string message) {
+    std::transform(message.begin(), message.end(), message.begin(),
+                   [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); });
+    for (const auto& rule : kFxcCodes)
+        if (rule.stage == stage && message.find(rule.fragment) != std::string::npos) return rule.code;
+    return stage == Stage::FrontEnd ? 3000 : 4532;
+}
+
+void add_diagnostics(std::vector<Diagnostic>& out, Stage stage, const std::vector<assembler::Diagnostic>& found) {
+    for (const auto& d : found) {
+        Diagnostic coded;
+        static_cast<assembler::Diagnostic&>(coded) = d;
+        coded.fxc_code = fxc_code(stage, d.message);
+        out.push_back(std::move(coded));
+    }
+}
+
+}  // namespace
+
+std::string format_fxc(const Diagnostic& d) {
+    std::string text = d.file;
+    if (d.line > 0) text += "(" + std::to_string(d.line) + "," + std::to_string(d.column) + ")";
+    const char* severity = d.severity == assembler::Severity::Error     ? "error"
+                           : d.severity == assembler::Severity::Warning ? "warning"
+                                                                        : "note";
+    char code[16];
+    std::snprintf(code, sizeof code, "X%04u", d.fxc_code);
+    return text + ": " + severity + " " + code + ": " + d.message;
+}
 
 std::optional<isa::ShaderType> parse_profile(std::string_view profile) {
     if (profile == "vs_2_0") return isa::ShaderType::Vertex;
@@ -15,10 +78,10 @@ std::optional<isa::ShaderType> parse_profile(std::string_view profile) {
 CompileResult compile(std::string_view source, const CompileOptions& options) {
     CompileResult result;
     SpirvModule spirv = hlsl_to_spirv(source, options);
-    result.diagnostics = std::move(spirv.diagnostics);
+    add_diagnostics(result.diagnostics, Stage::FrontEnd, spirv.diagnostics);
     if (spirv.words.empty()) return result;
     AssemblyOutput assembly = spirv_to_assembly(spirv.words, source, options);
-    result.diagnostics.insert(result.diagnostics.end(), assembly.diagnostics.begin(), assembly.diagnostics.end());
+    add_diagnostics(result.diagnostics, Stage::BackEnd, assembly.diagnostics);
     if (assembly.text.empty()) return result;
 
     // The assembler encodes and validates (profile limits: slots, read ports, dependent reads...);
@@ -32,6 +95,7 @@ CompileResult compile(std::string_view source, const CompileOptions& options) {
         lines.push_back(assembly.text.substr(start, end - start));
         start = end == std::string::npos ? assembly.text.size() : end + 1;
     }
+    std::vector<assembler::Diagnostic> validation;
     for (auto d : assembled.diagnostics) {
         const uint32_t line = d.line;
         const std::string statement = line >= 1 && line <= lines.size() ? lines[line - 1] : std::string();
@@ -41,8 +105,9 @@ CompileResult compile(std::string_view source, const CompileOptions& options) {
         d.line = origin.line;
         d.column = origin.column;
         if (!statement.empty()) d.message += " (in the generated `" + statement + "`)";
-        result.diagnostics.push_back(std::move(d));
+        validation.push_back(std::move(d));
     }
+    add_diagnostics(result.diagnostics, Stage::Validation, validation);
     if (!assembled.ok()) return result;
     result.program = std::move(assembled.program);
     result.tokens = std::move(assembled.tokens);

@@ -5,12 +5,21 @@
 #include <glslang/SPIRV/GlslangToSpv.h>
 #include <spirv-tools/optimizer.hpp>
 
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace sm2::hlsl {
 
@@ -111,6 +120,7 @@ void add_glslang_log(const std::string& log, const std::string& file, std::vecto
             d.message = rest;
         }
         if (d.line > 0 && d.column == 0) d.column = 1;
+        d.message.erase(d.message.find_last_not_of(" \t\r") + 1);  // glslang ends most with a space
         out.push_back(std::move(d));
     }
 }
@@ -133,9 +143,8 @@ void initialize_glslang() {
     std::call_once(once, [] { glslang::InitializeProcess(); });
 }
 
-}  // namespace
-
-SpirvModule hlsl_to_spirv(std::string_view source, const CompileOptions& options) {
+// The whole front end, in this process; hlsl_to_spirv runs it in a child process (see there).
+SpirvModule hlsl_to_spirv_unguarded(std::string_view source, const CompileOptions& options) {
     initialize_glslang();
     SpirvModule result;
     const EShLanguage stage = options.stage == isa::ShaderType::Vertex ? EShLangVertex : EShLangFragment;
@@ -206,6 +215,163 @@ SpirvModule hlsl_to_spirv(std::string_view source, const CompileOptions& options
                                       "SPIR-V optimizer failed: " + optimizer_errors});
     }
     return result;
+}
+
+// The child's answer on the pipe: the SPIR-V words, then each diagnostic. Native byte order:
+// the reader is the same program.
+class ModuleWriter {
+public:
+    void u32(uint32_t value) { bytes_.append(reinterpret_cast<const char*>(&value), sizeof value); }
+    void text(const std::string& value) {
+        u32(static_cast<uint32_t>(value.size()));
+        bytes_ += value;
+    }
+    [[nodiscard]] const std::string& bytes() const { return bytes_; }
+
+private:
+    std::string bytes_;
+};
+
+class ModuleReader {
+public:
+    explicit ModuleReader(std::string_view bytes) : bytes_(bytes) {}
+    bool u32(uint32_t& value) {
+        if (bytes_.size() - pos_ < sizeof value) return false;
+        std::memcpy(&value, bytes_.data() + pos_, sizeof value);
+        pos_ += sizeof value;
+        return true;
+    }
+    bool text(std::string& value) {
+        uint32_t size = 0;
+        if (!u32(size) || bytes_.size() - pos_ < size) return false;
+        value.assign(bytes_.substr(pos_, size));
+        pos_ += size;
+        return true;
+    }
+    [[nodiscard]] bool at_end() const { return pos_ == bytes_.size(); }
+
+private:
+    std::string_view bytes_;
+    size_t pos_ = 0;
+};
+
+std::string serialize_module(const SpirvModule& module) {
+    ModuleWriter out;
+    out.u32(static_cast<uint32_t>(module.words.size()));
+    for (uint32_t word : module.words) out.u32(word);
+    out.u32(static_cast<uint32_t>(module.diagnostics.size()));
+    for (const auto& d : module.diagnostics) {
+        out.u32(static_cast<uint32_t>(d.severity));
+        out.text(d.file);
+        out.u32(d.line);
+        out.u32(d.column);
+        out.text(d.message);
+    }
+    return out.bytes();
+}
+
+std::optional<SpirvModule> deserialize_module(std::string_view bytes) {
+    ModuleReader in(bytes);
+    SpirvModule module;
+    uint32_t count = 0;
+    if (!in.u32(count) || count > bytes.size() / 4) return std::nullopt;
+    module.words.resize(count);
+    for (uint32_t& word : module.words)
+        if (!in.u32(word)) return std::nullopt;
+    if (!in.u32(count) || count > bytes.size()) return std::nullopt;
+    for (uint32_t i = 0; i < count; ++i) {
+        assembler::Diagnostic d;
+        uint32_t severity = 0;
+        if (!in.u32(severity) || severity > static_cast<uint32_t>(assembler::Severity::Note) || !in.text(d.file) ||
+            !in.u32(d.line) || !in.u32(d.column) || !in.text(d.message))
+            return std::nullopt;
+        d.severity = static_cast<assembler::Severity>(severity);
+        module.diagnostics.push_back(std::move(d));
+    }
+    if (!in.at_end()) return std::nullopt;
+    return module;
+}
+
+bool write_all(int fd, std::string_view bytes) {
+    while (!bytes.empty()) {
+        const ssize_t written = ::write(fd, bytes.data(), bytes.size());
+        if (written < 0 && errno == EINTR) continue;
+        if (written <= 0) return false;
+        bytes.remove_prefix(static_cast<size_t>(written));
+    }
+    return true;
+}
+
+std::string read_all(int fd) {
+    std::string bytes;
+    char buffer[65536];
+    for (;;) {
+        const ssize_t got = ::read(fd, buffer, sizeof buffer);
+        if (got < 0 && errno == EINTR) continue;
+        if (got <= 0) return bytes;
+        bytes.append(buffer, static_cast<size_t>(got));
+    }
+}
+
+SpirvModule front_end_failure(const CompileOptions& options, const std::string& message) {
+    SpirvModule module;
+    module.diagnostics.push_back({assembler::Severity::Error, options.file_name, 1, 1, message});
+    return module;
+}
+
+}  // namespace
+
+// glslang 12 dereferences a null pointer when a global uniform is declared again with a different
+// type (`sampler2D t; float4 t;`, `float4 x; float3 x;`, also reached after syntax errors):
+// TParseContextBase::growGlobalUniformBlock builds its "Types must match" error from the new
+// member's field name, which is set only on the copy it made. That library, and whatever else
+// malformed input finds in it, is not ours to fix, so the front end runs in a forked child
+// process; a child that dies becomes an error at the top of the file instead of killing sm2.
+// A mutex keeps other threads of this process out of glslang (and its global locks) while forking.
+SpirvModule hlsl_to_spirv(std::string_view source, const CompileOptions& options) {
+    static std::mutex front_end_mutex;
+    const std::lock_guard lock(front_end_mutex);
+    // glslang builds its table of HLSL built-ins on a stage's first parse and keeps it for the
+    // process; built once here from a fixed shader, every child inherits it instead of rebuilding
+    // it (the bulk of a compile's time).
+    static bool warm[2] = {false, false};
+    if (!std::exchange(warm[options.stage == isa::ShaderType::Vertex], true)) {
+        CompileOptions warm_up = options;
+        warm_up.entry_point = "main";
+        warm_up.defines.clear();
+        (void)hlsl_to_spirv_unguarded("float4 main() : POSITION { return 0; }\n", warm_up);
+    }
+    int fds[2];
+    if (::pipe2(fds, O_CLOEXEC) != 0)  // not inherited by programs other threads start
+        return front_end_failure(options, std::string("cannot start the HLSL front end: pipe: ") + std::strerror(errno));
+    const pid_t child = ::fork();
+    if (child < 0) {
+        const int error = errno;
+        ::close(fds[0]);
+        ::close(fds[1]);
+        return front_end_failure(options, std::string("cannot start the HLSL front end: fork: ") + std::strerror(error));
+    }
+    if (child == 0) {
+        ::close(fds[0]);
+        // Die by the signal, quietly: no sanitizer or fuzzer crash handler, the parent reports it.
+        for (const int crash_signal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(crash_signal, SIG_DFL);
+        const bool sent = write_all(fds[1], serialize_module(hlsl_to_spirv_unguarded(source, options)));
+        ::_exit(sent ? 0 : 1);  // no exit handlers: they belong to the parent (leak checks, files)
+    }
+    ::close(fds[1]);
+    const std::string answer = read_all(fds[0]);
+    ::close(fds[0]);
+    int status = 0;
+    while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+    }
+    std::optional<SpirvModule> module;
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) module = deserialize_module(answer);
+    if (module) return std::move(*module);
+    const std::string how = WIFSIGNALED(status) ? "with signal " + std::to_string(WTERMSIG(status))
+                                                : "with exit status " + std::to_string(WEXITSTATUS(status));
+    return front_end_failure(options, "the HLSL front end (glslang) crashed on this input (" + how +
+                                          "); glslang 12 does on a global declared twice with different "
+                                          "types, as in `float4 x; float3 x;`");
 }
 
 }  // namespace sm2::hlsl

@@ -14,8 +14,6 @@ constexpr uint32_t kMemberInfoBytes = 8;     // D3DXSHADER_STRUCTMEMBERINFO
 constexpr int kMaxStructDepth = 16;
 constexpr size_t kMaxResolvedTypes = 4096;
 
-constexpr uint16_t kClassMatrixRows = 2;
-constexpr uint16_t kClassStruct = 5;
 
 struct Failure {
     std::string message;
@@ -162,7 +160,91 @@ private:
     size_t resolved_ = 0;
 };
 
+// Offsets in the layout count bytes from the header, which is where `bytes_` starts.
+class Writer {
+public:
+    std::vector<uint32_t> run(const ConstantTable& table) {
+        const uint32_t header = reserve(kHeaderBytes);
+        const uint32_t info = reserve(static_cast<uint32_t>(table.constants.size()) * kConstantInfoBytes);
+        for (size_t i = 0; i < table.constants.size(); ++i) {
+            const ConstantInfo& c = table.constants[i];
+            const uint32_t at = info + static_cast<uint32_t>(i) * kConstantInfoBytes;
+            put32(at, string(c.name));
+            put16(at + 4, static_cast<uint16_t>(c.register_set));
+            put16(at + 6, c.register_index);
+            put16(at + 8, c.register_count);
+            put32(at + 12, type(c.type));
+            if (!c.default_value.empty()) {
+                const uint32_t defaults = reserve(static_cast<uint32_t>(c.default_value.size()) * 4);
+                for (size_t k = 0; k < c.default_value.size(); ++k)
+                    put32(defaults + static_cast<uint32_t>(k) * 4, c.default_value[k]);
+                put32(at + 16, defaults);
+            }
+        }
+        put32(header, kHeaderBytes);
+        put32(header + 4, string(table.creator));
+        put32(header + 8, table.version);
+        put32(header + 12, static_cast<uint32_t>(table.constants.size()));
+        put32(header + 16, table.constants.empty() ? 0 : info);
+        put32(header + 20, table.flags);
+        put32(header + 24, string(table.target));
+        align();
+        std::vector<uint32_t> payload{kFourccCtab};
+        for (size_t k = 0; k < bytes_.size(); k += 4)
+            payload.push_back(static_cast<uint32_t>(bytes_[k]) | static_cast<uint32_t>(bytes_[k + 1]) << 8 |
+                              static_cast<uint32_t>(bytes_[k + 2]) << 16 | static_cast<uint32_t>(bytes_[k + 3]) << 24);
+        return payload;
+    }
+
+private:
+    uint32_t type(const ConstantType& t) {
+        const uint32_t at = reserve(kTypeInfoBytes);
+        put16(at, t.parameter_class);
+        put16(at + 2, t.parameter_type);
+        put16(at + 4, t.rows);
+        put16(at + 6, t.columns);
+        put16(at + 8, t.elements);
+        put16(at + 10, static_cast<uint16_t>(t.members.size()));
+        if (t.members.empty()) return at;
+        const uint32_t list = reserve(static_cast<uint32_t>(t.members.size()) * kMemberInfoBytes);
+        put32(at + 12, list);
+        for (size_t m = 0; m < t.members.size(); ++m) {
+            const uint32_t entry = list + static_cast<uint32_t>(m) * kMemberInfoBytes;
+            put32(entry, string(t.members[m].name));
+            put32(entry + 4, type(t.members[m].type));
+        }
+        return at;
+    }
+
+    uint32_t string(const std::string& text) {
+        const uint32_t at = reserve(static_cast<uint32_t>(text.size()) + 1);
+        std::copy(text.begin(), text.end(), bytes_.begin() + at);
+        return at;
+    }
+
+    // `size` zero bytes at the next DWORD boundary; their offset.
+    uint32_t reserve(uint32_t size) {
+        align();
+        const auto at = static_cast<uint32_t>(bytes_.size());
+        bytes_.resize(bytes_.size() + size);
+        return at;
+    }
+    void align() { bytes_.resize((bytes_.size() + 3) & ~size_t{3}); }
+    void put16(uint32_t at, uint16_t value) {
+        bytes_[at] = static_cast<uint8_t>(value);
+        bytes_[at + 1] = static_cast<uint8_t>(value >> 8);
+    }
+    void put32(uint32_t at, uint32_t value) {
+        put16(at, static_cast<uint16_t>(value));
+        put16(at + 2, static_cast<uint16_t>(value >> 16));
+    }
+
+    std::vector<uint8_t> bytes_;
+};
+
 }  // namespace
+
+std::vector<uint32_t> serialize_constant_table(const ConstantTable& table) { return Writer().run(table); }
 
 ConstantTableResult parse_constant_table(std::span<const uint32_t> payload) {
     try {
@@ -185,7 +267,7 @@ std::string constant_type_name(const ConstantType& type) {
         "texture2D",   "texture3D", "textureCUBE", "sampler", "sampler1D",   "sampler2D",   "sampler3D",
         "samplerCUBE", "pixelshader", "vertexshader", "pixelfragment", "vertexfragment"};
     std::string s;
-    if (type.parameter_class == kClassStruct) {
+    if (type.parameter_class == parameter_class::Struct) {
         s = "struct";
     } else {
         s = type.parameter_type < std::size(kTypes) ? kTypes[type.parameter_type]
@@ -193,9 +275,9 @@ std::string constant_type_name(const ConstantType& type) {
         switch (type.parameter_class) {
         case 0: break;  // scalar
         case 1: s += std::to_string(type.columns); break;
-        case kClassMatrixRows:
+        case parameter_class::MatrixRows:
         case 3:
-            s = (type.parameter_class == kClassMatrixRows ? "row_major " : "") + s + std::to_string(type.rows) +
+            s = (type.parameter_class == parameter_class::MatrixRows ? "row_major " : "") + s + std::to_string(type.rows) +
                 "x" + std::to_string(type.columns);
             break;
         case 4: break;  // object

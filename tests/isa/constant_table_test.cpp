@@ -212,5 +212,60 @@ TEST(ConstantTable, MalformedTablesAreErrors) {
     EXPECT_EQ(cut.table->constants[0].default_value, (std::vector<uint32_t>{0xBF800000, 1}));
 }
 
+// serialize_constant_table: one float4 with a default, laid out by hand (offsets from the header,
+// which starts after the FOURCC): header 0-27, constant info 28-47, name "k" 48, type info 52-67,
+// default 68-83, creator "ab" 84, target "ps_2_0" 88-94, padded to 96 bytes.
+TEST(ConstantTableWriter, LayoutOfOneVectorWithADefault) {
+    ConstantTable table;
+    table.creator = "ab";
+    table.version = 0xFFFF0200;
+    table.target = "ps_2_0";
+    ConstantInfo k;
+    k.name = "k";
+    k.register_index = 3;
+    k.register_count = 1;
+    k.type = {parameter_class::Vector, parameter_type::Float, 1, 4, 1, {}};
+    k.default_value = {0x3F800000, 0x40000000, 0, 0xBF800000};  // 1, 2, 0, -1
+    table.constants.push_back(k);
+    const std::vector<uint32_t> expected = {
+        kFourccCtab,
+        0x1c, 0x54, 0xFFFF0200, 1, 0x1c, 0, 0x58,       // size, creator@84, version, count, info@28, flags, target@88
+        0x30, 0x00030002, 0x00000001, 0x34, 0x44,       // name@48, set 2 (c) index 3, count 1, type@52, default@68
+        0x0000006b,                                     // "k"
+        0x00030001, 0x00040001, 0x00000001, 0,          // vector float, 1 row 4 columns, 1 element, no members
+        0x3F800000, 0x40000000, 0, 0xBF800000,          // default
+        0x00006261,                                     // "ab"
+        0x325f7370, 0x0000305f};                        // "ps_2_0"
+    EXPECT_EQ(serialize_constant_table(table), expected);
+}
+
+// Structs (members nest), arrays, the bool set and defaults survive a write and a read.
+TEST(ConstantTableWriter, ParsedTablesWriteBackToTheSameTable) {
+    const ConstantTableResult first = parse_constant_table(struct_table());
+    ASSERT_TRUE(first.ok()) << first.error;
+    const ConstantTableResult second = parse_constant_table(serialize_constant_table(*first.table));
+    ASSERT_TRUE(second.ok()) << second.error;
+    const ConstantTable& a = *first.table;
+    const ConstantTable& b = *second.table;
+    EXPECT_EQ(b.creator, a.creator);
+    EXPECT_EQ(b.target, a.target);
+    EXPECT_EQ(b.version, a.version);
+    ASSERT_EQ(b.constants.size(), a.constants.size());
+    for (size_t i = 0; i < a.constants.size(); ++i) {
+        EXPECT_EQ(b.constants[i].name, a.constants[i].name);
+        EXPECT_EQ(b.constants[i].register_set, a.constants[i].register_set);
+        EXPECT_EQ(b.constants[i].register_index, a.constants[i].register_index);
+        EXPECT_EQ(b.constants[i].register_count, a.constants[i].register_count);
+        EXPECT_EQ(constant_type_name(b.constants[i].type), constant_type_name(a.constants[i].type));
+        EXPECT_EQ(b.constants[i].default_value, a.constants[i].default_value);
+        ASSERT_EQ(b.constants[i].type.members.size(), a.constants[i].type.members.size());
+        for (size_t m = 0; m < a.constants[i].type.members.size(); ++m) {
+            EXPECT_EQ(b.constants[i].type.members[m].name, a.constants[i].type.members[m].name);
+            EXPECT_EQ(constant_type_name(b.constants[i].type.members[m].type),
+                      constant_type_name(a.constants[i].type.members[m].type));
+        }
+    }
+}
+
 }  // namespace
 }  // namespace sm2::isa

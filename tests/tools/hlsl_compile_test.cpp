@@ -61,6 +61,20 @@ TEST(HlslCompile, ConstantColourPixelShader) {
     expect_near(run_output(ps, "", "oC0"), {1, 0.5f, 0.25f, 1});
 }
 
+TEST(HlslCompile, SplatConstantFillsTheWholeOutput) {
+    // A vector of equal literals is one def component seen through a replicate swizzle, here the
+    // second one (0.5 comes first): uv.x * 0.5 + 0.25 = 0.75 in every component for uv.x = 1.
+    const auto ps = compile("splat",
+                            "float4 main(float2 uv : TEXCOORD0) : COLOR {\n"
+                            "  return uv.x * 0.5 + float4(0.25, 0.25, 0.25, 0.25);\n}\n", "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "--input t0=1,0", "oC0"), {0.75f, 0.75f, 0.75f, 0.75f});
+    // A scalar returned as float4 is the same splat.
+    const auto scalar = compile("splat_scalar", "float4 main() : COLOR { return 0.5; }\n", "ps_2_0");
+    ASSERT_FALSE(scalar.empty());
+    expect_near(run_output(scalar, "", "oC0"), {0.5f, 0.5f, 0.5f, 0.5f});
+}
+
 TEST(HlslCompile, VertexShaderTransformsAndPassesTexcoord) {
     // float4x4 is column_major: c0..c3 hold M's columns, so mul(pos, M).j = dot(pos, c_j):
     // pos (1,2,3,1) -> (1, 4, 9, 1+2+3+1 = 7). uv * 2: (0.25, 0.75) -> (0.5, 1.5).
@@ -251,4 +265,71 @@ TEST(HlslCompile, LoopsAreUnrolledAndTheSlotLimitIsLocated) {
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find("loop70.hlsl(3,"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("the limit is 64"), std::string::npos) << r.err;
+}
+
+TEST(HlslCompile, FxcErrorsCarryFxcNumbers) {
+    // Each line is fxc's `file(line,col): error X####: message`; glslang gives no columns (1).
+    auto errors_of = [](const std::string& name, const std::string& hlsl, const std::string& profile) {
+        const std::string source = tmp(name);
+        write_file(source, hlsl);
+        const cli_support::Run r = sm2("compile " + source + " -T " + profile + " --fxc-errors");
+        EXPECT_EQ(r.status, 1);
+        return r.err;
+    };
+    const std::string syntax = errors_of("fxc_syntax.hlsl", "float4 main() : COLOR {\n  return 1 +;\n}\n", "ps_2_0");
+    EXPECT_EQ(syntax.rfind(tmp("fxc_syntax.hlsl") + "(2,1): error X3000: 'expression' : Expected\n", 0), 0u) << syntax;
+    const std::string undeclared =
+        errors_of("fxc_undeclared.hlsl", "float4 main() : COLOR {\n  return undefined_thing;\n}\n", "ps_2_0");
+    EXPECT_NE(undeclared.find("fxc_undeclared.hlsl(2,1): error X3004: 'undefined_thing' : unknown variable"),
+              std::string::npos) << undeclared;
+    const std::string redefined =
+        errors_of("fxc_redefined.hlsl", "float4 main() : COLOR {\n  float a;\n  float a;\n  return a;\n}\n", "ps_2_0");
+    EXPECT_NE(redefined.find("fxc_redefined.hlsl(3,1): error X3003: 'a' : redefinition"), std::string::npos) << redefined;
+    const std::string no_entry = errors_of("fxc_entry.hlsl", "float4 other() : COLOR { return 1; }\n", "ps_2_0");
+    EXPECT_NE(no_entry.find("fxc_entry.hlsl: error X3501: link failed (is the entry point 'main' defined?)"),
+              std::string::npos) << no_entry;
+    // 65 dependent mads: the 65th passes ps_2_0's 64 arithmetic slots (fxc's X5608), at the loop's line.
+    const std::string slots = errors_of("fxc_slots.hlsl",
+                                        "float4 main(float2 uv : TEXCOORD0) : COLOR {\n  float x = uv.x;\n"
+                                        "  for (int i = 0; i < 70; i++) x = x * x + 0.5;\n  return x;\n}\n",
+                                        "ps_2_0");
+    EXPECT_NE(slots.find("fxc_slots.hlsl(3,1): error X5608: [slot-budget] mad: uses arithmetic instruction slot 65; "
+                         "the limit is 64"),
+              std::string::npos) << slots;
+    // What the profile cannot express: X4532, fxc's "cannot map expression to vs_2_0 instruction set".
+    const std::string vs_texture = errors_of(
+        "fxc_vstex.hlsl", "sampler2D s;\nfloat4 main(float2 uv : TEXCOORD0) : POSITION {\n  return tex2D(s, uv);\n}\n",
+        "vs_2_0");
+    EXPECT_NE(vs_texture.find("fxc_vstex.hlsl(3,1): error X4532: texture sampling in a vertex shader needs vs_3_0"),
+              std::string::npos) << vs_texture;
+    // The glslang crash sm2 guards against (a global declared again with another type).
+    const std::string crash = errors_of("fxc_crash.hlsl", "sampler2D tex; float4 tex;\n", "ps_2_0");
+    EXPECT_NE(crash.find("fxc_crash.hlsl(1,1): error X3000: the HLSL front end (glslang) crashed on this input"),
+              std::string::npos) << crash;
+}
+
+TEST(HlslCompile, DisassemblyShowsTheConstantTable) {
+    const auto ps = compile("ctab",
+                            "float4 tint = float4(1, 0.5, 0.25, 1);\nrow_major float4x4 world;\nsampler2D diffuse;\n"
+                            "float4 main(float2 uv : TEXCOORD0) : COLOR { return tex2D(diffuse, uv) * tint + world[2]; }\n",
+                            "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    const cli_support::Run r = sm2("dis " + ps);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("target ps_2_0, creator \"sm2emu sm2 compile (glslang HLSL, SPIRV-Tools, sm2 back end)\""),
+              std::string::npos) << r.out;
+    // name, type, first register, count (and defaults): tint c0, world c1..c4 (rows), diffuse s0.
+    EXPECT_NE(r.out.find("tint     float4              c0        1  default {1, 0.5, 0.25, 1}"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("world    row_major float4x4  c1        4"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("diffuse  sampler2D           s0        1"), std::string::npos) << r.out;
+}
+
+TEST(HlslCompile, RunSetsUniformsByTheirNames) {
+    // --const NAME fills the named registers four values at a time: tint = c0, world = c1..c4 (rows),
+    // so world[2] is c3 = (10, 20, 30, 40); tint + world[2] = (11, 22, 33, 44).
+    const auto ps = compile("named", "float4 tint;\nrow_major float4x4 world;\n"
+                                     "float4 main() : COLOR { return tint + world[2]; }\n", "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "--const tint=1,2,3,4 --const world=0,0,0,0,0,0,0,0,10,20,30,40,0,0,0,0", "oC0"),
+                {11, 22, 33, 44});
 }

@@ -24,16 +24,25 @@ struct CompileOptions {
     std::vector<std::string> include_dirs;                       // -I DIR, searched after the file's folder
 };
 
+// A located diagnostic with the number fxc would give it (X3000 is printed as "X3000"); the
+// mapping from our messages to fxc's numbers is in docs/hlsl.md ("Errors").
+struct Diagnostic : assembler::Diagnostic {
+    uint32_t fxc_code = 0;
+};
+
 struct CompileResult {
     std::optional<isa::Program> program;  // set when there were no errors
-    std::vector<uint32_t> tokens;         // the bytecode, version .. END
+    std::vector<uint32_t> tokens;         // the bytecode, version .. END, with the CTAB comment
     std::string assembly;                 // the SM2 assembly the back end produced (empty on error)
-    std::vector<assembler::Diagnostic> diagnostics;  // located at the HLSL source
+    std::vector<Diagnostic> diagnostics;  // located at the HLSL source
     [[nodiscard]] bool ok() const { return program.has_value(); }
 };
 
 // Never throws; every problem (syntax, unsupported construct, profile limit) becomes a diagnostic.
 [[nodiscard]] CompileResult compile(std::string_view source, const CompileOptions& options);
+
+// fxc's form: "file(line,col): error X3000: message" (no position: "file: error X3000: message").
+[[nodiscard]] std::string format_fxc(const Diagnostic& diagnostic);
 
 // The profile name as -T spells it ("vs_2_0", "ps_2_0"); nullopt for any other.
 [[nodiscard]] std::optional<isa::ShaderType> parse_profile(std::string_view profile);

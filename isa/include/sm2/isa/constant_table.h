@@ -20,6 +20,16 @@ constexpr uint32_t kFourccCtab = 0x42415443;  // 'C' 'T' 'A' 'B', little-endian
 // D3DXREGISTER_SET
 enum class ConstantRegisterSet : uint16_t { Bool = 0, Int4 = 1, Float4 = 2, Sampler = 3 };
 
+// D3DXPARAMETER_CLASS.
+namespace parameter_class {
+constexpr uint16_t Scalar = 0, Vector = 1, MatrixRows = 2, MatrixColumns = 3, Object = 4, Struct = 5;
+}
+// D3DXPARAMETER_TYPE, the values an SM2 constant table uses.
+namespace parameter_type {
+constexpr uint16_t Void = 0, Bool = 1, Int = 2, Float = 3, Sampler = 10, Sampler1D = 11, Sampler2D = 12,
+                   Sampler3D = 13, SamplerCube = 14;
+}
+
 struct ConstantMember;
 
 // D3DXSHADER_TYPEINFO with its struct members resolved.
@@ -67,6 +77,11 @@ struct ConstantTableResult {
 // are errors, not hangs. Default values are read as 4 DWORDs per register (1 for the bool set),
 // cut short at the end of the block.
 [[nodiscard]] ConstantTableResult parse_constant_table(std::span<const uint32_t> payload);
+
+// The payload of a CTAB comment block (FOURCC first), laid out as fxc does: header, constant
+// infos, then each constant's name, type and default value, then the creator and target strings;
+// parse_constant_table reads it back field for field. Default values are written as given.
+[[nodiscard]] std::vector<uint32_t> serialize_constant_table(const ConstantTable& table);
 
 // The first comment block of the program whose FOURCC is 'CTAB', parsed; nullopt when there is
 // none (a malformed one gives a result with its error).
