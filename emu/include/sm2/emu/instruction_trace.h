@@ -35,7 +35,8 @@ struct InstructionTrace {
 };
 
 // execute(executable, constants, batch, sampler) with every step observed and grouped into runs
-// of consecutive steps with the same origin.
+// of consecutive steps with the same origin (a loop's next iteration of a one-instruction body
+// starts a new run: it writes again what the run wrote).
 [[nodiscard]] std::vector<InstructionTrace> trace_instructions(const Executable& executable, const ConstantFile& constants,
                                                                Batch& batch, Sampler* sampler);
 
