@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -127,6 +128,38 @@ struct PixelHistory {
     bool consistent = true;
 };
 
+// Replays `o.stream` to the end of frame `o.frame`, with `watch(true)` before each of that
+// frame's calls and `after_call(call, name)` after it (the draws the watch recorded are that
+// call's). nullopt, after printing why, when the stream cannot be read or presents no such frame.
+std::optional<CallWalk> replay_frame(const PixelCliOptions& o, const char* command, rt::Device& device,
+                                     const std::function<void(bool)>& watch,
+                                     const std::function<void(uint64_t, const std::string&)>& after_call) {
+    uint64_t last_call = 0;
+    std::string last_name;
+    bool watching = false;
+    const auto finish_call = [&] {
+        if (watching) after_call(last_call, last_name);
+    };
+    auto walk = walk_calls(o.stream, o.read_root, command, device, [&](uint64_t call, const rt::cs::Statement& st) {
+        finish_call();
+        if (device.frames_presented() > o.frame) return false;  // the frame has been presented
+        watching = device.frames_presented() == o.frame;
+        watch(watching);
+        last_call = call;
+        last_name = st.name;
+        return true;
+    });
+    finish_call();
+    watch(false);
+    if (!walk) return std::nullopt;
+    if (device.frames_presented() <= o.frame) {
+        std::cerr << "sm2 " << command << ": --frame " << o.frame << ": out of range: " << walk->file_name << " presents "
+                  << device.frames_presented() << " frame" << (device.frames_presented() == 1 ? "" : "s") << '\n';
+        return std::nullopt;
+    }
+    return walk;
+}
+
 // Replays and records; prints the error and returns the exit status when it cannot.
 std::variant<PixelHistory, int> record_history(const PixelCliOptions& o, const char* command, bool debug_shaders) {
     const auto xy = parse_pixel(o.pixel);
@@ -148,35 +181,20 @@ std::variant<PixelHistory, int> record_history(const PixelCliOptions& o, const c
     h.x = watch.x;
     h.y = watch.y;
     h.target = *target;
-    uint64_t last_call = 0;
-    std::string last_name;
     size_t attributed = 0;
-    auto attribute = [&] {  // the draws the last call made belong to it; its targets are still bound
+    const auto walk = replay_frame(o, command, device, [&](bool on) { device.watch_pixel(on ? &watch : nullptr); },
+                                   [&](uint64_t call, const std::string& name) {
         if (attributed == watch.draws.size()) return;
+        // The targets the call drew into are still bound: their names.
         const rt::DeviceInspection bound = device.inspect();
         std::array<std::string, rt::kMaxRenderTargets> names;
         for (unsigned i = 0; i < rt::kMaxRenderTargets; ++i)
             if (bound.render_target_resources[i]) names[i] = bound.render_target_resources[i]->name;
         for (; attributed < watch.draws.size(); ++attributed)
-            h.draws.push_back({last_call, last_name, std::move(watch.draws[attributed]), names, 0});
-    };
-    auto walk = walk_calls(o.stream, o.read_root, command, device, [&](uint64_t call, const rt::cs::Statement& st) {
-        attribute();
-        if (device.frames_presented() > o.frame) return false;  // the frame has been presented
-        device.watch_pixel(device.frames_presented() == o.frame ? &watch : nullptr);
-        last_call = call;
-        last_name = st.name;
-        return true;
+            h.draws.push_back({call, name, std::move(watch.draws[attributed]), names, 0});
     });
-    attribute();
-    device.watch_pixel(nullptr);
     if (!walk) return kInvalidInput;
     h.file_name = walk->file_name;
-    if (device.frames_presented() <= o.frame) {
-        std::cerr << "sm2 " << command << ": --frame " << o.frame << ": out of range: " << walk->file_name << " presents "
-                  << device.frames_presented() << " frame" << (device.frames_presented() == 1 ? "" : "s") << '\n';
-        return kInvalidInput;
-    }
     const rt::Surface* back = device.inspect().back_buffer;
     // Which slot of each draw is the chosen target (none: the draw is not in its history).
     auto slot_of = [&](const DrawAtCall& d) -> std::optional<unsigned> {
@@ -490,28 +508,12 @@ int run_vertex_debug(const DebugCliOptions& o) {
         std::shared_ptr<const rt::ShaderDebug> debug;
     };
     std::vector<VertexAtCall> draws;
-    uint64_t last_call = 0;
-    std::string last_name;
-    size_t attributed = 0;
-    auto attribute = [&] {
-        for (; attributed < watch.draws.size(); ++attributed) draws.push_back({last_call, last_name, watch.draws[attributed]});
-    };
-    auto walk = walk_calls(o.pixel.stream, o.pixel.read_root, "debug", device, [&](uint64_t call, const rt::cs::Statement& st) {
-        attribute();
-        if (device.frames_presented() > o.pixel.frame) return false;
-        device.watch_vertex(device.frames_presented() == o.pixel.frame ? &watch : nullptr);
-        last_call = call;
-        last_name = st.name;
-        return true;
+    const auto walk = replay_frame(o.pixel, "debug", device, [&](bool on) { device.watch_vertex(on ? &watch : nullptr); },
+                                   [&](uint64_t call, const std::string& name) {
+        for (auto& traced : watch.draws) draws.push_back({call, name, std::move(traced)});
+        watch.draws.clear();
     });
-    attribute();
-    device.watch_vertex(nullptr);
     if (!walk) return kInvalidInput;
-    if (device.frames_presented() <= o.pixel.frame) {
-        std::cerr << "sm2 debug: --frame " << o.pixel.frame << ": out of range: " << walk->file_name << " presents "
-                  << device.frames_presented() << " frame" << (device.frames_presented() == 1 ? "" : "s") << '\n';
-        return kInvalidInput;
-    }
     const VertexAtCall* chosen = nullptr;
     for (const auto& d : draws)
         if (d.debug && (!o.draw || d.call == *o.draw)) chosen = &d;
