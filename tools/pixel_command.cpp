@@ -484,8 +484,14 @@ int run_pixel_debug(const DebugCliOptions& o) {
     for (const auto& f : chosen->draw.fragments)
         if (f.shader_debug) fragment = &f;
     if (!fragment) {
+        std::string shaded;  // the draws that can be debugged here instead
+        for (const auto& d : h.draws)
+            if (std::any_of(d.draw.fragments.begin(), d.draw.fragments.end(), [](const auto& f) { return f.shader_debug != nullptr; }))
+                shaded += (shaded.empty() ? "" : ", ") + std::to_string(d.call);
         std::cerr << "sm2 debug: call " << chosen->call << " covered pixel " << h.x << "," << h.y
-                  << " but its pixel shader did not run there (scissored, or the early depth/stencil test failed)\n";
+                  << " but its pixel shader did not run there (scissored, or the early depth/stencil test failed); "
+                  << (shaded.empty() ? std::string("no draw's shader ran there") : "--draw one of the calls whose shader ran: " + shaded)
+                  << '\n';
         return kInvalidInput;
     }
     const rt::ShaderDebug& d = *fragment->shader_debug;

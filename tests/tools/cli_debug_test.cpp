@@ -18,6 +18,7 @@ using cli_support::sm2;
 using cli_support::tmp;
 using cli_support::write_file;
 
+const std::string kSource = SM2_SOURCE_DIR;
 const std::string kShaderTrace = "/work/shared/traces/shader_scene.trace";
 
 void expect_vec(const nlohmann::json& v, double x, double y, double z, double w, const std::string& what,
@@ -245,6 +246,9 @@ TEST(CliDebug, BadArgumentsAreRefused) {
     expect("debug " + stream + " --frame 0 --vertex 4", 1, "no draw fetched vertex 4 in frame 0 (none did)");
     expect("debug " + stream + " --frame 0 --vertex 0 --draw 11", 1, "--draw 11: no draw at that call fetched");
     expect("pixel " + stream + " --frame 0 --pixel 1,1 --target ''", 2, "--target ''");
+    // Scene 02, pixel (128, 128): the last draw over it, call 38, fails the early depth test there.
+    expect("debug " + kSource + "/samples/scenes/02_shared_edges_stencil.sm2cs --frame 0 --pixel 128,128", 1,
+           "call 38 covered pixel 128,128 but its pixel shader did not run there");
 }
 
 // ---------------------------------------------------------------------------------------------
