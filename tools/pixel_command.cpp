@@ -12,7 +12,6 @@
 #include <memory>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <variant>
 
 #include <nlohmann/json.hpp>
@@ -66,13 +65,6 @@ std::string mask_text(uint8_t mask) {
     for (unsigned c = 0; c < 4; ++c)
         if (mask >> c & 1u) text += "xyzw"[c];
     return text;
-}
-
-rt::Device make_device() {
-    rt::DeviceOptions options;
-    options.threads = std::max(1u, std::thread::hardware_concurrency());
-    options.engine = rt::DeviceOptions::Engine::Jit;
-    return rt::Device(options);
 }
 
 // --target: which surface's history. The back buffer (default), render target slot N of each
@@ -172,7 +164,7 @@ std::variant<PixelHistory, int> record_history(const PixelCliOptions& o, const c
         std::cerr << "sm2 " << command << ": --target '': expected back, rt0..rt3 or a surface's name\n";
         return kBadUsage;
     }
-    rt::Device device = make_device();
+    rt::Device device(inspection_device_options());
     rt::PixelWatch watch;
     watch.x = xy->first;
     watch.y = xy->second;
@@ -505,7 +497,7 @@ int run_pixel_debug(const DebugCliOptions& o) {
 }
 
 int run_vertex_debug(const DebugCliOptions& o) {
-    rt::Device device = make_device();
+    rt::Device device(inspection_device_options());
     rt::VertexWatch watch;
     watch.index = *o.vertex;
     struct VertexAtCall {

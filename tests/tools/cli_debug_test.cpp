@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -355,6 +356,23 @@ TEST(CliPixelTarget, TheSecondRenderTargetShowsOC1) {
     ASSERT_EQ(back["draws"].size(), 1u);
     EXPECT_EQ(back["draws"][0]["render_target"], 0);
     expect_vec(back["draws"][0]["fragments"][0]["shader_color"], 1, 0, 0, 1, "oC0", 1e-6);
+}
+
+TEST(CliInspectSideEffects, SaveSurfaceWritesNothingWhenLookingInside) {
+    // sm2 state, pixel and debug replay a stream to look at it: its SaveSurface calls succeed
+    // without writing into the working folder.
+    const std::string image = "inspect_side_effect_" + std::to_string(getpid()) + ".png";
+    std::string text = kTwoTargets;
+    text.insert(text.find("Present\n"), "SaveSurface second \"" + image + "\"\n");
+    const std::string stream = tmp("save_surface.sm2cs");
+    write_file(stream, text);
+    for (const std::string& args : {"state " + stream + " --call 14", "pixel " + stream + " --frame 0 --pixel 1,1",
+                                   "debug " + stream + " --frame 0 --pixel 1,1"}) {
+        const Result r = sm2(args);
+        EXPECT_EQ(r.status, 0) << args << ": " << r.err;
+        EXPECT_FALSE(std::filesystem::exists(image)) << args;
+        std::filesystem::remove(image);
+    }
 }
 
 }  // namespace
