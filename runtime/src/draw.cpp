@@ -117,11 +117,11 @@ std::optional<DebugShader> debug_shader(const std::shared_ptr<Device::ShaderObje
     return debug;
 }
 
-// `slots` of `batch` that `executable` reads, with every lane's value (sm2 debug's inputs).
-std::vector<emu::InstructionWrite> inputs_read(const emu::Executable& executable, const emu::Batch& batch,
-                                               unsigned first_slot, unsigned slot_count) {
+// The inputs (v#, t#) `executable` reads, with every lane's value in `batch`.
+std::vector<emu::InstructionWrite> inputs_read(const emu::Executable& executable, const emu::Batch& batch) {
+    static_assert(slot::kTexCoordFirst == slot::kInputFirst + slot::kInputCount, "v# and t# slots are contiguous");
     std::vector<emu::InstructionWrite> inputs;
-    for (unsigned s = first_slot; s < first_slot + slot_count; ++s) {
+    for (unsigned s = slot::kInputFirst; s < slot::kTexCoordFirst + slot::kTexCoordCount; ++s) {
         const uint8_t mask = executable.components_read()[s];
         if (!mask) continue;
         emu::InstructionWrite input{static_cast<uint16_t>(s), false, mask, {}};
@@ -140,11 +140,21 @@ std::vector<std::pair<uint16_t, Float4>> constants_read(const emu::Executable& e
             const emu::StepSource& source = step.sources[k];
             if (source.kind != emu::OperandKind::Constant || source.index >= constants.registers.size()) continue;
             if (std::any_of(read.begin(), read.end(), [&](const auto& r) { return r.first == source.index; })) continue;
-            const auto& v = constants.registers[source.index];
-            read.emplace_back(source.index, Float4{v[0], v[1], v[2], v[3]});
+            read.emplace_back(source.index, constants.registers[source.index]);
         }
     std::sort(read.begin(), read.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     return read;
+}
+
+// `debug` run on `batch` (its inputs as the draw set them), one source instruction at a time.
+std::shared_ptr<ShaderDebug> trace_shader(const DebugShader& debug, emu::Batch& batch, emu::Sampler* sampler) {
+    auto trace = std::make_shared<ShaderDebug>();
+    trace->program = debug.program;
+    trace->fixed_function = debug.fixed_function;
+    trace->inputs = inputs_read(*debug.executable, batch);
+    trace->constants = constants_read(*debug.executable, debug.constants);
+    trace->steps = emu::trace_instructions(*debug.executable, debug.constants, batch, sampler);
+    return trace;
 }
 
 // Engine::Jit: the entry's executable as native code, from the process-wide cache on the
@@ -342,11 +352,10 @@ struct PixelRecorder {
         fragment->depth = worker->lanes.depth[l];
         if (!ps) return;
         // The shader cannot write its inputs: after it ran they still hold the interpolated values.
-        for (const auto& [first, count] : {std::pair{slot::kInputFirst, 2u}, std::pair{slot::kTexCoordFirst, slot::kTexCoordCount}})
-            for (unsigned s = first; s < first + count; ++s)
-                if (ps->components_read()[s])
-                    fragment->inputs.emplace_back(static_cast<uint16_t>(s), Float4{batch.registers[s][0][l], batch.registers[s][1][l],
-                                                                              batch.registers[s][2][l], batch.registers[s][3][l]});
+        for (unsigned s = slot::kInputFirst; s < slot::kTexCoordFirst + slot::kTexCoordCount; ++s)
+            if (ps->components_read()[s])
+                fragment->inputs.emplace_back(static_cast<uint16_t>(s), Float4{batch.registers[s][0][l], batch.registers[s][1][l],
+                                                                          batch.registers[s][2][l], batch.registers[s][3][l]});
     }
     void merged(emu::LaneMask written) { fragment->written = has(written); }
 };
@@ -536,9 +545,7 @@ void record_pixel_history(PixelWatch& watch, const PixelPipeline& pipe, Primitiv
             shade_quads(pipe, prim, std::span<const Quad>(w.quads), w, recorder);
             if (debug && recorder.shader_input && recorder.lane() >= 0) {
                 // The same quad again, from the same inputs, one source instruction at a time.
-                auto trace = std::make_shared<ShaderDebug>();
-                trace->program = debug->program;
-                trace->fixed_function = debug->fixed_function;
+                auto trace = trace_shader(*debug, *recorder.shader_input, &w.sampler);
                 trace->lanes = emu::kQuadLanes;
                 trace->watched_lane = static_cast<unsigned>(recorder.lane());
                 // The pass ran on one pixel: the quad's other lanes are covered if the primitive
@@ -547,11 +554,6 @@ void record_pixel_history(PixelWatch& watch, const PixelPipeline& pipe, Primitiv
                 std::vector<Quad> whole_quad;
                 rasterize(prim, PixelRect{quad.x, quad.y, quad.x + 2, quad.y + 2}, whole_quad);
                 trace->covered = whole_quad.empty() ? w.lanes.coverage & 0xFu : whole_quad.front().mask;
-                trace->inputs = inputs_read(*debug->executable, *recorder.shader_input, slot::kInputFirst, 2);
-                auto texcoords = inputs_read(*debug->executable, *recorder.shader_input, slot::kTexCoordFirst, slot::kTexCoordCount);
-                trace->inputs.insert(trace->inputs.end(), texcoords.begin(), texcoords.end());
-                trace->constants = constants_read(*debug->executable, debug->constants);
-                trace->steps = emu::trace_instructions(*debug->executable, debug->constants, *recorder.shader_input, &w.sampler);
                 f.shader_debug = std::move(trace);
             }
             if (shader_depth && f.shaded) f.depth = w.batch.registers[emu::slot::kDepth][0][static_cast<size_t>(recorder.lane())];
@@ -731,14 +733,9 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
         if (debug) {
             auto batch = std::make_unique<emu::Batch>();
             if (fetch(*plan.plan, streams, std::span(&*found, 1), *batch).empty()) {
-                trace = std::make_shared<ShaderDebug>();
-                trace->program = debug->program;
-                trace->fixed_function = debug->fixed_function;
+                trace = trace_shader(*debug, *batch, nullptr);
                 trace->lanes = 1;
                 trace->covered = 1;
-                trace->inputs = inputs_read(*debug->executable, *batch, slot::kInputFirst, slot::kInputCount);
-                trace->constants = constants_read(*debug->executable, debug->constants);
-                trace->steps = emu::trace_instructions(*debug->executable, debug->constants, *batch, nullptr);
             }
         }
         vertex_watch_->draws.push_back(std::move(trace));
