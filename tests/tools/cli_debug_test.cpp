@@ -3,6 +3,7 @@
 // checked against sm2 run on the same inputs.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -356,6 +357,28 @@ TEST(CliPixelTarget, TheSecondRenderTargetShowsOC1) {
     ASSERT_EQ(back["draws"].size(), 1u);
     EXPECT_EQ(back["draws"][0]["render_target"], 0);
     expect_vec(back["draws"][0]["fragments"][0]["shader_color"], 1, 0, 0, 1, "oC0", 1e-6);
+}
+
+TEST(CliDebug, AFixedFunctionVertexProgram) {
+    // ff_lit_cube.trace draws without shaders: the debugger steps the program the device generated
+    // for the fixed-function state. Its first instruction transforms the position by the combined
+    // matrix in c0..c3; the test does that dot product itself from the inputs and constants shown.
+    const std::string trace = "/work/shared/traces/ff_lit_cube.trace";
+    const auto j = run_json("debug " + trace + " --frame 0 --vertex 0");
+    ASSERT_TRUE(j.is_object()) << j.dump();
+    EXPECT_EQ(j["fixed_function"], true);
+    EXPECT_NE(j["source"].get<std::string>().find("fixed-function"), std::string::npos);
+    ASSERT_FALSE(j["steps"].empty());
+    EXPECT_EQ(j["steps"][0]["text"], "m4x4 oPos, v0, c0");
+    const auto& v0 = j["inputs"]["v0"][0];
+    const auto position = write_of(j["steps"][0], "oPos");
+    ASSERT_FALSE(position.is_null());
+    for (int row = 0; row < 4; ++row) {
+        const auto& c = j["constants"]["c" + std::to_string(row)];
+        double dot = 0;
+        for (int k = 0; k < 4; ++k) dot += v0[k].get<double>() * c[k].get<double>();
+        EXPECT_NEAR(position["lanes"][0][row].get<double>(), dot, 1e-4 * (1 + std::abs(dot))) << row;
+    }
 }
 
 TEST(CliInspectSideEffects, SaveSurfaceWritesNothingWhenLookingInside) {
