@@ -1,6 +1,8 @@
 #include "call_walk.h"
 
+#include <algorithm>
 #include <iostream>
+#include <thread>
 
 #include "io.h"
 #include "sm2/runtime/apitrace_import.h"
@@ -11,6 +13,14 @@
 namespace sm2::tools {
 
 namespace cs = runtime::cs;
+
+runtime::DeviceOptions inspection_device_options() {
+    runtime::DeviceOptions options;
+    options.threads = std::max(1u, std::thread::hardware_concurrency());
+    options.engine = runtime::DeviceOptions::Engine::Jit;
+    options.write_image = [](const runtime::Surface&, const std::string&) {};
+    return options;
+}
 
 std::string CallWalk::range_text() const {
     if (last_call < first_call) return "no calls";

@@ -20,6 +20,11 @@ struct CallWalk {
     [[nodiscard]] std::string range_text() const;  // "calls 1..120" ("no calls" when empty)
 };
 
+// The device sm2 state, pixel and debug replay on: every core, the JIT, and no files written
+// (a stream's SaveSurface succeeds without writing: looking inside a frame leaves no images in
+// the working folder).
+[[nodiscard]] runtime::DeviceOptions inspection_device_options();
+
 // Replays `path` (.sm2cs, .sm2cb, or .trace) on `device`. Before each call, `keep_going(call,
 // statement)` decides whether it runs; the first `false` ends the replay (a trace is still read
 // to its end, to count its calls). Calls are numbered as sm2 replay --stats and --snapshot

@@ -36,4 +36,7 @@ void add_state_command(CLI::App& app, int& status);
 // One pixel's history in a frame: `pixel`.
 void add_pixel_command(CLI::App& app, int& status);
 
+// A draw's pixel or vertex shader stepped one source instruction at a time: `debug`.
+void add_debug_command(CLI::App& app, int& status);
+
 }  // namespace sm2::tools

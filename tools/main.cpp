@@ -61,6 +61,14 @@ constexpr Examples kExamples[] = {
               "  sm2 bench samples/scenes/27_final_combine.sm2cs\n"
               "  sm2 bench scene.sm2cs --repeat 20 --threads 1 --precision fp24\n"
               "  sm2 bench scene.sm2cs --json\n"},
+    {"pixel", "Examples:\n"
+              "  sm2 pixel scene.sm2cs --frame 0 --pixel 128,100\n"
+              "  sm2 pixel scene.sm2cs --frame 0 --pixel 12,40 --target rt1 --json\n"
+              "  sm2 pixel capture.trace --frame 2 --pixel 64,64 --target 0x5593a0c0\n"},
+    {"debug", "Examples:\n"
+              "  sm2 debug scene.sm2cs --frame 0 --pixel 128,100\n"
+              "  sm2 debug scene.sm2cs --frame 0 --pixel 128,100 --draw 17 --json\n"
+              "  sm2 debug scene.sm2cs --frame 0 --vertex 2 --draw 17\n"},
     {"diff", "Examples:\n"
              "  sm2 diff out/lake/frame_0000.png reference.png\n"
              "  sm2 diff a.exr b.exr --fail 0.004 --warn 0.001 --heatmap diff.png --heatmap-scale 0.01\n"
@@ -145,6 +153,7 @@ int main(int argc, char** argv) {
     sm2::tools::add_replay_commands(app, status);
     sm2::tools::add_state_command(app, status);
     sm2::tools::add_pixel_command(app, status);
+    sm2::tools::add_debug_command(app, status);
     sm2::tools::add_diff_command(app, status);
     for (const auto& e : kExamples)
         if (CLI::App* cmd = find_command(app, CLI::detail::split(e.path, ' '))) cmd->footer(e.text);

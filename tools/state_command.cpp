@@ -6,7 +6,6 @@
 #include <memory>
 #include <sstream>
 #include <string>
-#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -295,10 +294,7 @@ void print_state_text(const json& j, const rt::DeviceInspection& now) {
 }
 
 int run_state(const StateCliOptions& o) {
-    rt::DeviceOptions device_options;
-    device_options.threads = std::max(1u, std::thread::hardware_concurrency());
-    device_options.engine = rt::DeviceOptions::Engine::Jit;
-    rt::Device device(device_options);
+    rt::Device device(inspection_device_options());
     // The defaults are those of a device created as this one was (ZENABLE is TRUE with an
     // automatic depth-stencil surface): its CreateDevice replayed on a second device.
     rt::Device fresh;

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "sm2/emu/batch.h"
+#include "sm2/emu/instruction_trace.h"
 
 namespace sm2::emu {
 
@@ -33,24 +34,6 @@ void Executable::summarize_register_use() {
     }
 }
 
-namespace {
-
-std::string mask_text(uint8_t mask) {
-    if (mask == 0xF) return "";
-    std::string s = ".";
-    for (int c = 0; c < 4; ++c)
-        if ((mask >> c) & 1) s += "xyzw"[c];
-    return s;
-}
-
-std::string swizzle_text(uint8_t swizzle) {
-    if (swizzle == 0xE4) return "";
-    std::string s = ".";
-    for (int c = 0; c < 4; ++c) s += "xyzw"[(swizzle >> (2 * c)) & 3];
-    return s;
-}
-
-// Slot numbers back to register names ("r3", "oPos", "t1").
 std::string slot_name(unsigned s) {
     struct Range {
         unsigned first, count;
@@ -73,6 +56,23 @@ std::string slot_name(unsigned s) {
         if (s >= range.first && s < range.first + range.count)
             return range.name + (range.numbered ? std::to_string(s - range.first) : std::string());
     return "slot" + std::to_string(s);
+}
+
+namespace {
+
+std::string mask_text(uint8_t mask) {
+    if (mask == 0xF) return "";
+    std::string s = ".";
+    for (int c = 0; c < 4; ++c)
+        if ((mask >> c) & 1) s += "xyzw"[c];
+    return s;
+}
+
+std::string swizzle_text(uint8_t swizzle) {
+    if (swizzle == 0xE4) return "";
+    std::string s = ".";
+    for (int c = 0; c < 4; ++c) s += "xyzw"[(swizzle >> (2 * c)) & 3];
+    return s;
 }
 
 std::string source_text(const StepSource& s) {

@@ -68,6 +68,15 @@ uint32_t vs_outputs_for(uint16_t varyings) {
     return outputs;
 }
 
+emu::LoweringOptions lowering_options(const Device::ShaderObject& object, uint32_t outputs_read,
+                                      const emu::PrecisionOptions& precision) {
+    emu::LoweringOptions options;
+    options.precision = precision;
+    options.outputs_read = outputs_read;
+    if (object.shader->version().is_vertex()) options.constant_count = kMaxVertexShaderConstantsF;
+    return options;
+}
+
 // The pipeline cache: one lowered executable per (flow key, outputs read) of a shader.
 Device::ShaderObject::Lowered* lowered_for(Device::ShaderObject& object, const emu::StaticFlowConstants& application,
                                    uint32_t outputs_read, const emu::PrecisionOptions& precision,
@@ -75,11 +84,7 @@ Device::ShaderObject::Lowered* lowered_for(Device::ShaderObject& object, const e
     const emu::StaticFlowConstants key = object.shader->flow_key(application);
     for (auto& entry : object.lowered)
         if (entry.flow == key && entry.outputs_read == outputs_read) return &entry;
-    emu::LoweringOptions options;
-    options.precision = precision;
-    options.outputs_read = outputs_read;
-    if (object.shader->version().is_vertex()) options.constant_count = kMaxVertexShaderConstantsF;
-    auto lowered = emu::lower(*object.shader, key, options);
+    auto lowered = emu::lower(*object.shader, key, lowering_options(object, outputs_read, precision));
     if (!lowered.executable) {
         error = lowered.error;
         return nullptr;
@@ -87,6 +92,69 @@ Device::ShaderObject::Lowered* lowered_for(Device::ShaderObject& object, const e
     object.lowered.push_back({key, outputs_read, std::move(*lowered.executable), false, nullptr});
     ++stats.pipelines_built;
     return &object.lowered.back();
+}
+
+// A shader lowered as for the draw but keeping every instruction, dead or not (sm2 debug shows
+// each source instruction), with its constants bound as the draw binds them.
+struct DebugShader {
+    std::shared_ptr<const isa::Program> program;
+    bool fixed_function = false;
+    std::optional<emu::Executable> executable;
+    emu::ConstantFile constants;
+};
+
+std::optional<DebugShader> debug_shader(const std::shared_ptr<Device::ShaderObject>& object, bool fixed_function,
+                                        const emu::StaticFlowConstants& application, uint32_t outputs_read,
+                                        const emu::PrecisionOptions& precision,
+                                        std::span<const std::array<float, 4>> constants) {
+    emu::LoweringOptions options = lowering_options(*object, outputs_read, precision);
+    options.keep_dead_code = true;
+    auto lowered = emu::lower(*object->shader, object->shader->flow_key(application), options);
+    if (!lowered.executable) return std::nullopt;
+    DebugShader debug{std::shared_ptr<const isa::Program>(object, &object->shader->program()), fixed_function,
+                      std::move(lowered.executable), {}};
+    debug.constants = debug.executable->bind_constants(constants);
+    return debug;
+}
+
+// The inputs (v#, t#) `executable` reads, with every lane's value in `batch`.
+std::vector<emu::InstructionWrite> inputs_read(const emu::Executable& executable, const emu::Batch& batch) {
+    static_assert(slot::kTexCoordFirst == slot::kInputFirst + slot::kInputCount, "v# and t# slots are contiguous");
+    std::vector<emu::InstructionWrite> inputs;
+    for (unsigned s = slot::kInputFirst; s < slot::kTexCoordFirst + slot::kTexCoordCount; ++s) {
+        const uint8_t mask = executable.components_read()[s];
+        if (!mask) continue;
+        emu::InstructionWrite input{static_cast<uint16_t>(s), false, mask, {}};
+        for (unsigned lane = 0; lane < emu::kBatchLanes; ++lane)
+            for (unsigned c = 0; c < 4; ++c) input.lanes[lane][c] = batch.registers[s][c][lane];
+        inputs.push_back(input);
+    }
+    return inputs;
+}
+
+// The constants `executable` reads by number, as bound for the draw.
+std::vector<std::pair<uint16_t, Float4>> constants_read(const emu::Executable& executable, const emu::ConstantFile& constants) {
+    std::vector<std::pair<uint16_t, Float4>> read;
+    for (const emu::Step& step : executable.steps())
+        for (unsigned k = 0; k < step.source_count; ++k) {
+            const emu::StepSource& source = step.sources[k];
+            if (source.kind != emu::OperandKind::Constant || source.index >= constants.registers.size()) continue;
+            if (std::any_of(read.begin(), read.end(), [&](const auto& r) { return r.first == source.index; })) continue;
+            read.emplace_back(source.index, constants.registers[source.index]);
+        }
+    std::sort(read.begin(), read.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    return read;
+}
+
+// `debug` run on `batch` (its inputs as the draw set them), one source instruction at a time.
+std::shared_ptr<ShaderDebug> trace_shader(const DebugShader& debug, emu::Batch& batch, emu::Sampler* sampler) {
+    auto trace = std::make_shared<ShaderDebug>();
+    trace->program = debug.program;
+    trace->fixed_function = debug.fixed_function;
+    trace->inputs = inputs_read(*debug.executable, batch);
+    trace->constants = constants_read(*debug.executable, debug.constants);
+    trace->steps = emu::trace_instructions(*debug.executable, debug.constants, batch, sampler);
+    return trace;
 }
 
 // Engine::Jit: the entry's executable as native code, from the process-wide cache on the
@@ -131,6 +199,7 @@ struct TileWorker {
 // (PixelRecorder, only in a draw's second pass over that one pixel). Empty inline calls compile
 // away, so the draw's code is the same with and without pixel history.
 struct NoObserver {
+    void before_shader(const emu::Batch&) {}
     void early_tested(emu::LaneMask) {}
     void shaded(const emu::Batch&, emu::LaneMask) {}
     void merged(emu::LaneMask) {}
@@ -166,6 +235,7 @@ void shade_quads(const PixelPipeline& pipe, const PrimitiveSetup& prim, std::spa
         if (!live) return;
     }
     w.batch.killed = 0;
+    observer.before_shader(w.batch);
     if (pipe.ps_compiled) {
         pipe.ps_compiled->run(*pipe.ps_constants, w.batch, &w.sampler);
     } else if (pipe.ps) {
@@ -265,6 +335,9 @@ struct PixelRecorder {
     uint32_t x = 0, y = 0;
     const TileWorker* worker = nullptr;
     PixelFragment* fragment = nullptr;
+    const emu::Executable* ps = nullptr;
+    bool keep_shader_input = false;             // sm2 debug: the batch as the shader starts
+    std::unique_ptr<emu::Batch> shader_input;
 
     [[nodiscard]] int lane() const {
         for (unsigned l = 0; l < worker->lanes.quad_count * 4 && l < emu::kBatchLanes; ++l)
@@ -274,6 +347,9 @@ struct PixelRecorder {
     [[nodiscard]] bool has(emu::LaneMask mask) const {
         const int l = lane();
         return l >= 0 && (mask >> l & 1u);
+    }
+    void before_shader(const emu::Batch& batch) {
+        if (keep_shader_input) shader_input = std::make_unique<emu::Batch>(batch);
     }
     void early_tested(emu::LaneMask live) {
         fragment->early_depth_stencil = true;
@@ -287,6 +363,12 @@ struct PixelRecorder {
         for (unsigned t = 0; t < kMaxRenderTargets; ++t)
             for (unsigned c = 0; c < 4; ++c) fragment->shader_color[t][c] = batch.render_target(t)[c][l];
         fragment->depth = worker->lanes.depth[l];
+        if (!ps) return;
+        // The shader cannot write its inputs: after it ran they still hold the interpolated values.
+        for (unsigned s = slot::kInputFirst; s < slot::kTexCoordFirst + slot::kTexCoordCount; ++s)
+            if (ps->components_read()[s])
+                fragment->inputs.emplace_back(static_cast<uint16_t>(s), Float4{batch.registers[s][0][l], batch.registers[s][1][l],
+                                                                          batch.registers[s][2][l], batch.registers[s][3][l]});
     }
     void merged(emu::LaneMask written) { fragment->written = has(written); }
 };
@@ -450,7 +532,7 @@ void record_pixel_history(PixelWatch& watch, const PixelPipeline& pipe, Primitiv
                           std::span<const Primitive> primitives, std::span<const ClipVertex> shaded,
                           std::span<const uint32_t> slots, const ClipState& clip, const SetupState& setup_state,
                           const SetupState& unscissored_state, bool scissor_test, const TextureSampler& sampler,
-                          const PixelBytes& before, bool shader_depth) {
+                          const PixelBytes& before, bool shader_depth, const DebugShader* debug) {
     PixelDraw& draw = watch.draws.back();
     const uint32_t x = watch.x, y = watch.y;
     const PixelValues drawn = read_pixel(pipe.targets, x, y);
@@ -472,8 +554,21 @@ void record_pixel_history(PixelWatch& watch, const PixelPipeline& pipe, Primitiv
             f.color_before = start.color;
             f.depth_before = start.depth;
             f.stencil_before = start.stencil;
-            PixelRecorder recorder{x, y, &w, &f};
+            PixelRecorder recorder{x, y, &w, &f, pipe.ps, debug != nullptr, nullptr};
             shade_quads(pipe, prim, std::span<const Quad>(w.quads), w, recorder);
+            if (debug && recorder.shader_input && recorder.lane() >= 0) {
+                // The same quad again, from the same inputs, one source instruction at a time.
+                auto trace = trace_shader(*debug, *recorder.shader_input, &w.sampler);
+                trace->lanes = emu::kQuadLanes;
+                trace->watched_lane = static_cast<unsigned>(recorder.lane());
+                // The pass ran on one pixel: the quad's other lanes are covered if the primitive
+                // covers them in the draw.
+                const Quad& quad = w.quads.front();
+                std::vector<Quad> whole_quad;
+                rasterize(prim, PixelRect{quad.x, quad.y, quad.x + 2, quad.y + 2}, whole_quad);
+                trace->covered = whole_quad.empty() ? w.lanes.coverage & 0xFu : whole_quad.front().mask;
+                f.shader_debug = std::move(trace);
+            }
             if (shader_depth && f.shaded) f.depth = w.batch.registers[emu::slot::kDepth][0][static_cast<size_t>(recorder.lane())];
             // The late tests, in merge's order: alpha, then depth/stencil (both decided by what
             // merge wrote: a pixel past the alpha test that wrote nothing failed depth/stencil).
@@ -638,6 +733,26 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
                        vs->bind_constants(vertex_shader_ ? vs_f_ : ff_vs_constants),
                        writes_point_size, shaded);
     if (!fetch_error.empty()) return CallResult::fail("vertex fetch: " + fetch_error);
+    if (vertex_watch_) {
+        // sm2 debug --vertex: the watched vertex fetched again and its shader traced (one test per
+        // draw when no watch is set).
+        std::shared_ptr<ShaderDebug> trace;
+        const auto found = std::find(unique.vertices.begin(), unique.vertices.end(), vertex_watch_->index);
+        auto debug = found == unique.vertices.end()
+                         ? std::nullopt
+                         : debug_shader(vertex_shader_ ? vertex_shader_->shader : ff_vs, !vertex_shader_, vs_flow,
+                                        vs_outputs, options_.precision,
+                                        vertex_shader_ ? std::span(vs_f_) : std::span(ff_vs_constants));
+        if (debug) {
+            auto batch = std::make_unique<emu::Batch>();
+            if (fetch(*plan.plan, streams, std::span(&*found, 1), *batch).empty()) {
+                trace = trace_shader(*debug, *batch, nullptr);
+                trace->lanes = 1;
+                trace->covered = 1;
+            }
+        }
+        vertex_watch_->draws.push_back(std::move(trace));
+    }
 
     stats_.vertex_seconds += lap(clock);
 
@@ -699,7 +814,10 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     // Pixel history (sm2 pixel): one test per draw; the tiles run as they always do.
     std::optional<PixelBytes> watched_before;
     if (pixel_watch_) {
-        pixel_watch_->draws.push_back(PixelDraw{rt0, pixel_watch_->x < rt0->width() && pixel_watch_->y < rt0->height(), {}, true});
+        PixelDraw draw;
+        std::copy(targets.color.begin(), targets.color.end(), draw.targets.begin());
+        draw.inside = pixel_watch_->x < rt0->width() && pixel_watch_->y < rt0->height();
+        pixel_watch_->draws.push_back(std::move(draw));
         if (pixel_watch_->draws.back().inside) watched_before = save_pixel(targets, pixel_watch_->x, pixel_watch_->y);
     }
     run_tiles(pipe, setups, bins, sampler, *pool_, stats_);
@@ -709,9 +827,13 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
         SetupState unscissored = setup_state;
         unscissored.clip_rect = make_setup_state(unscissored_rs, viewport_, rt0->width(), rt0->height(), scissor_).clip_rect;
         const DrawStatistics counted = stats_;  // the second pass is not the draw's work
+        std::optional<DebugShader> ps_debug;
+        if (pixel_watch_->debug_shaders && ps_object)
+            ps_debug = debug_shader(pixel_shader_ ? pixel_shader_->shader : ff_ps, !pixel_shader_, ps_flow, ps_outputs,
+                                    options_.precision, pixel_shader_ ? std::span(ps_f_) : std::span(ff_ps_constants));
         record_pixel_history(*pixel_watch_, pipe, type, render_state_.fill_mode, assembled.primitives, shaded,
                              unique.slots, clip, setup_state, unscissored, render_state_.scissor_test_enable, sampler,
-                             *watched_before, pipe.merge_template.shader_depth);
+                             *watched_before, pipe.merge_template.shader_depth, ps_debug ? &*ps_debug : nullptr);
         stats_ = counted;
     }
 

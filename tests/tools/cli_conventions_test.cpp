@@ -98,7 +98,7 @@ TEST(CliConventions, HelpCommandAndDidYouMean) {
     EXPECT_NE(sm2("help cs pack").out.find("writes scene.sm2cb beside it"), std::string::npos);
     EXPECT_NE(sm2("help").out.find("sm2 help COMMAND"), std::string::npos);
     // Every command's help has examples.
-    for (const char* c : {"asm", "dis", "validate", "compile", "run", "cs pack", "cs dump", "cs import", "trace dump", "replay", "bench", "diff"}) {
+    for (const char* c : {"asm", "dis", "validate", "compile", "run", "cs pack", "cs dump", "cs import", "trace dump", "replay", "bench", "pixel", "debug", "diff"}) {
         auto r = sm2(std::string("help ") + c);
         EXPECT_EQ(r.status, 0) << c;
         EXPECT_NE(r.out.find("Examples:\n  sm2 " + std::string(c).substr(0, 2)), std::string::npos) << c << r.out;

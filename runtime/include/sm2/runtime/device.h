@@ -38,6 +38,7 @@ class WorkerPool;
 struct StateBlockObject;
 struct DeviceInspection;  // sm2/runtime/device_inspection.h
 struct PixelWatch;        // sm2/runtime/pixel_history.h
+struct VertexWatch;       // sm2/runtime/pixel_history.h
 
 // The HRESULT a refused call returns: D3DERR_INVALIDCALL for bad arguments and state,
 // D3DERR_OUTOFVIDEOMEMORY when a resource does not fit in DeviceOptions::memory_limit, and
@@ -304,6 +305,9 @@ public:
     // Pixel history (sm2 pixel): while `watch` is set, each draw appends what its primitives did
     // to pixel (watch->x, watch->y) of its render targets. Null (the default) turns it off.
     void watch_pixel(PixelWatch* watch) { pixel_watch_ = watch; }
+    // Vertex debugging (sm2 debug --vertex): while `watch` is set, each draw appends the trace of
+    // its vertex shader for vertex watch->index, when the draw fetches that vertex.
+    void watch_vertex(VertexWatch* watch) { vertex_watch_ = watch; }
 
     struct Resource;
     struct ShaderObject;
@@ -363,6 +367,7 @@ private:
     std::shared_ptr<StateBlockObject> state_before_recording_;  // given back at EndStateBlock
     uint32_t frame_ = 0;
     PixelWatch* pixel_watch_ = nullptr;
+    VertexWatch* vertex_watch_ = nullptr;
     DrawStatistics stats_{};
     uint64_t memory_used_ = 0;
     TextureSampler sampler_;

@@ -4,14 +4,32 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
+#include "sm2/emu/instruction_trace.h"
+#include "sm2/isa/program.h"
 #include "sm2/runtime/formats.h"
 
 namespace sm2::runtime {
 
 class Surface;
+
+// A shader as it ran for the watched pixel's quad or the watched vertex (sm2 debug), recorded
+// only when asked for: the interpreter runs the draw's shader again on the inputs the draw gave
+// it, one source instruction at a time (emu::trace_instructions).
+struct ShaderDebug {
+    std::shared_ptr<const isa::Program> program;  // what the instructions' indices index
+    bool fixed_function = false;                  // generated from the fixed-function state
+    unsigned lanes = 0;                           // lanes traced: 4 (the pixel's 2x2 quad) or 1 (a vertex)
+    unsigned watched_lane = 0;                    // the lane of the watched pixel or vertex
+    emu::LaneMask covered = 0;                    // quad lanes inside the primitive (others: helper lanes)
+    std::vector<emu::InstructionWrite> inputs;    // v#, t# as interpolated or fetched; mask: those read
+    std::vector<std::pair<uint16_t, Float4>> constants;  // c# read by name (not c[a0.x + n]), def values included
+    std::vector<emu::InstructionTrace> steps;
+};
 
 // One primitive of a draw that covers the watched pixel, in draw order.
 struct PixelFragment {
@@ -28,12 +46,15 @@ struct PixelFragment {
     std::array<Float4, 4> color_before{}, color_after{};  // render targets 0..3 at the pixel, as stored
     float depth_before = 0.0f, depth_after = 0.0f;
     uint32_t stencil_before = 0, stencil_after = 0;
+    // The pixel shader's inputs at the pixel (v0, v1, t0..t7 that it reads), as interpolated.
+    std::vector<std::pair<uint16_t, Float4>> inputs;  // (emu lane slot, value)
+    std::shared_ptr<const ShaderDebug> shader_debug;  // PixelWatch::debug_shaders only
 };
 
 // One draw while the watch was set.
 struct PixelDraw {
-    const Surface* target = nullptr;  // render target 0 of the draw
-    bool inside = false;              // the pixel is inside render target 0
+    std::array<const Surface*, 4> targets{};  // render targets 0..3 of the draw (null: none bound)
+    bool inside = false;                      // the pixel is inside render target 0
     std::vector<PixelFragment> fragments;
     // The recording gave the pixel the value the draw itself gave it (always, unless a bug).
     bool consistent = true;
@@ -41,7 +62,14 @@ struct PixelDraw {
 
 struct PixelWatch {
     uint32_t x = 0, y = 0;
+    bool debug_shaders = false;    // also trace each fragment's pixel shader (ShaderDebug)
     std::vector<PixelDraw> draws;  // one per draw while the watch is set
+};
+
+struct VertexWatch {
+    uint32_t index = 0;  // the vertex number fetched (an index buffer's value plus BaseVertexIndex)
+    // One per draw while the watch is set; null when the draw does not fetch vertex `index`.
+    std::vector<std::shared_ptr<const ShaderDebug>> draws;
 };
 
 }  // namespace sm2::runtime
