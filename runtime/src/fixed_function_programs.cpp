@@ -15,6 +15,8 @@ using isa::RegisterType;
 using isa::SourceModifier;
 
 constexpr uint8_t kXYZ = 0x7, kW = 0x8, kXY = 0x3, kZ = 0x4;
+// D3DTEXTURETRANSFORMFLAGS: COUNT1..COUNT4 in the low byte, PROJECTED.
+constexpr uint32_t kTtffCountMask = 0xFF, kTtffProjected = 0x100;
 constexpr uint8_t kSwizzleW = 0xFF, kSwizzleZWZW = 0xEE;
 
 isa::SourceParameter src(RegisterType type, unsigned index, uint8_t swizzle = isa::kSwizzleIdentity,
@@ -123,7 +125,9 @@ constexpr unsigned kVcGlobalAmbient = 14;  // AMBIENT
 constexpr unsigned kVcMaterial = 15;       // c15..c18: material diffuse, ambient, specular, emissive
 constexpr unsigned kVcPower = 19;          // (power, 0, 0, 0)
 constexpr unsigned kVcFog = 20;            // (FOGEND, 1 / (FOGEND - FOGSTART), FOGDENSITY, log2 e)
-constexpr unsigned kVcLightFirst = 21;     // kLightConstants per enabled light:
+constexpr unsigned kVcHalf = 21;           // (0.5, 0.5, 0.5, 0.5): sphere map scale and offset
+constexpr unsigned kVcLightFirst = 22;     // kLightConstants per enabled light, then 4 per
+                                           // transformed texture stage (its matrix's columns):
 constexpr unsigned kLightDiffuse = 0, kLightSpecular = 1, kLightAmbient = 2,
                    kLightVector = 3,       // directional: direction to the light; point: position (camera space)
                    kLightAttenuation = 4,  // (attenuation0, 1, 2, range)
@@ -158,6 +162,31 @@ std::array<float, 9> inverse3(const std::array<float, 9>& m) {
             static_cast<float>((a * e - b * d) * k)};
 }
 
+// The number of components a vertex element supplies (the rest are fetched as (0, 0, 0, 1)).
+unsigned decl_type_components(uint8_t type) {
+    switch (static_cast<DeclType>(type)) {
+    case DeclType::FLOAT1: return 1;
+    case DeclType::FLOAT2: case DeclType::SHORT2: case DeclType::SHORT2N: case DeclType::USHORT2N:
+    case DeclType::FLOAT16_2: return 2;
+    case DeclType::FLOAT3: case DeclType::UDEC3: case DeclType::DEC3N: return 3;
+    default: return 4;
+    }
+}
+
+// A stage's texture matrix for an input of `components` components, as the 4 columns m4x4
+// reads. D3D9 extends a 1- or 2-component coordinate with a 1 right after it, (u, 1, 0, 0) or
+// (u, v, 1, 0), so that a 2D coordinate's translation is the matrix's third row; the fetch gives
+// (u, 0, 0, 1) and (u, v, 0, 1), so that row moves to the fourth, which the 1 multiplies.
+std::array<std::array<float, 4>, 4> texture_matrix_columns(const Matrix4& m, unsigned components) {
+    Matrix4 adjusted = m;
+    if (components <= 2)
+        for (unsigned col = 0; col < 4; ++col) adjusted[12 + col] = m[components * 4 + col];
+    std::array<std::array<float, 4>, 4> columns{};
+    for (unsigned row = 0; row < 4; ++row)
+        for (unsigned col = 0; col < 4; ++col) columns[col][row] = adjusted[row * 4 + col];
+    return columns;
+}
+
 }  // namespace
 
 FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff, const RenderState& rs,
@@ -165,20 +194,23 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
                                                    std::span<const VertexElement> declaration) {
     bool has_position = false, pretransformed = false, has_diffuse = false, has_specular = false, has_normal = false;
     std::array<bool, 8> has_texcoord{};
+    std::array<unsigned, 8> texcoord_components{};
     for (const auto& e : declaration) {
         if (e.usage == kUsagePosition && e.usage_index == 0) has_position = true;
         if (e.usage == kUsagePositionT && e.usage_index == 0) has_position = pretransformed = true;
         if (e.usage == kUsageNormal && e.usage_index == 0) has_normal = true;
         if (e.usage == kUsageColor && e.usage_index == 0) has_diffuse = true;
         if (e.usage == kUsageColor && e.usage_index == 1) has_specular = true;
-        if (e.usage == kUsageTexCoord && e.usage_index < 8) has_texcoord[e.usage_index] = true;
+        if (e.usage == kUsageTexCoord && e.usage_index < 8) {
+            has_texcoord[e.usage_index] = true;
+            texcoord_components[e.usage_index] = decl_type_components(e.type);
+        }
     }
     if (!has_position) return refused("fixed-function vertex processing: the declaration has no POSITION or POSITIONT 0");
     const bool lighting = states.lighting && !pretransformed;
     if (!pretransformed && states.vertex_blend != 0) return refused("fixed-function vertex blending is not emulated");
     const bool vertex_fog =
         rs.fog_enable && rs.fog_table_mode == FogMode::None && !pretransformed && rs.fog_vertex_mode != FogMode::None;
-    if (vertex_fog && rs.range_fog_enable) return refused("fixed-function range fog (RANGEFOGENABLE) is not emulated yet");
     std::vector<const Light*> lights;
     if (lighting)
         for (uint32_t index : ff.enabled_lights) {
@@ -189,29 +221,30 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
             return refused("fixed-function lighting: material source " + std::to_string(source) +
                            " is not MATERIAL, COLOR1 or COLOR2");
     // D3DTSS_TCI_* texture coordinate generation: PASSTHRU 0, CAMERASPACENORMAL 1,
-    // CAMERASPACEPOSITION 2, CAMERASPACEREFLECTIONVECTOR 3 (SPHEREMAP 4 is refused).
+    // CAMERASPACEPOSITION 2, CAMERASPACEREFLECTIONVECTOR 3, SPHEREMAP 4.
     constexpr uint32_t kTciPassThru = 0, kTciNormal = 1, kTciPosition = 2, kTciReflection = 3, kTciSphereMap = 4;
     bool generates_from_normal = false, generates_from_position = false;
     for (unsigned s = 0; s < kMaxTextureStages; ++s) {
         const uint32_t tci = ff.stages[s][kTssTexCoordIndex];
         const uint32_t mode = tci >> 16;
-        if (mode == kTciSphereMap)
-            return refused("texture stage " + std::to_string(s) +
-                           ": TEXCOORDINDEX SPHEREMAP texture coordinate generation is not emulated yet");
         if (mode > kTciSphereMap)
             return refused("texture stage " + std::to_string(s) + ": TEXCOORDINDEX mode " + std::to_string(mode) +
                            " is not a D3DTSS_TCI mode");
         if (mode != kTciPassThru && pretransformed)
             return refused("texture stage " + std::to_string(s) +
                            ": TEXCOORDINDEX texture coordinate generation needs untransformed (XYZ) vertices");
-        generates_from_normal |= mode == kTciNormal || mode == kTciReflection;
-        generates_from_position |= mode == kTciPosition || mode == kTciReflection;
+        generates_from_normal |= mode == kTciNormal || mode == kTciReflection || mode == kTciSphereMap;
+        generates_from_position |= mode == kTciPosition || mode == kTciReflection || mode == kTciSphereMap;
         if ((tci & 0xFFFF) >= 8)
             return refused("texture stage " + std::to_string(s) + ": TEXCOORDINDEX " + std::to_string(tci & 0xFFFF) +
                            " is not a texture coordinate set (0..7)");
-        if (ff.stages[s][kTssTextureTransformFlags] != 0 && !pretransformed)
+        const uint32_t flags = ff.stages[s][kTssTextureTransformFlags];
+        if ((flags & ~(kTtffCountMask | kTtffProjected)) != 0 || (flags & kTtffCountMask) > 4)
+            return refused("texture stage " + std::to_string(s) + ": TEXTURETRANSFORMFLAGS " + std::to_string(flags) +
+                           " is not COUNT1..COUNT4 with or without PROJECTED");
+        if (flags == (1 | kTtffProjected))
             return refused("texture stage " + std::to_string(s) +
-                           ": TEXTURETRANSFORMFLAGS (texture transforms, projection) are not emulated yet");
+                           ": TEXTURETRANSFORMFLAGS COUNT1 PROJECTED (a projection needs 2 to 4 components)");
     }
 
     ProgramBuilder b(isa::ShaderType::Vertex);
@@ -390,42 +423,90 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
         b.op(Opcode::Mov, dst(RegisterType::AttrOut, 0), {has_diffuse ? in(kInDiffuse) : c(kVcDefaultDiffuse)});
         b.op(Opcode::Mov, dst(RegisterType::AttrOut, 1), {has_specular ? in(kInSpecular) : c(kVcZero)});
     }
+    constants[kVcHalf] = {0.5f, 0.5f, 0.5f, 0.5f};
     for (unsigned s = 0; s < kMaxTextureStages; ++s) {
         const uint32_t set = ff.stages[s][kTssTexCoordIndex] & 0xFFFF, mode = ff.stages[s][kTssTexCoordIndex] >> 16;
+        const uint32_t flags = ff.stages[s][kTssTextureTransformFlags];
+        const unsigned count = flags & kTtffCountMask;
         const auto o_t = [&](uint8_t mask) { return dst(RegisterType::TexCrdOut, s, mask); };
-        if (mode == kTciPassThru) {
-            if (has_texcoord[set]) b.op(Opcode::Mov, o_t(isa::kMaskAll), {in(kInTexCoord0 + set)});
-            continue;
-        }
-        // Generated: (x, y, z, 1) of the camera-space normal, position, or the reflection of the
-        // view direction I about N, R = I - 2 (N.I) N, with I = norm(P) under LOCALVIEWER and
-        // (0, 0, 1) without (D3D9 "Texture Coordinate Processing"; as Wine).
-        if (mode == kTciNormal) b.op(Opcode::Mov, o_t(kXYZ), {r(1)});
-        if (mode == kTciPosition) b.op(Opcode::Mov, o_t(kXYZ), {r(0)});
-        if (mode == kTciReflection) {
-            if (states.local_viewer) {
-                b.op(Opcode::Nrm, rd(8, kXYZ), {r(0)});
-            } else {
-                b.op(Opcode::Mov, rd(8), {c(kVcZero)});
-                b.op(Opcode::Mov, rd(8, kZ), {c(kVcOne)});
+        if (mode == kTciPassThru && !has_texcoord[set]) continue;  // nothing to pass, transform or project
+        // The stage's input coordinate: the vertex's set, or generated into r10 as (x, y, z, 1)
+        // from the camera-space normal, position, the reflection of the view direction I about N,
+        // R = I - 2 (N.I) N, with I = norm(P) under LOCALVIEWER and (0, 0, 1) without (D3D9
+        // "Texture Coordinate Processing"; as Wine), or the sphere map coordinate of R.
+        isa::SourceParameter coordinate = in(kInTexCoord0 + set);
+        unsigned components = texcoord_components[set];
+        if (mode != kTciPassThru) {
+            coordinate = r(10);
+            components = 4;
+            if (mode == kTciNormal) b.op(Opcode::Mov, rd(10, kXYZ), {r(1)});
+            if (mode == kTciPosition) b.op(Opcode::Mov, rd(10, kXYZ), {r(0)});
+            if (mode == kTciReflection || mode == kTciSphereMap) {
+                if (states.local_viewer) {
+                    b.op(Opcode::Nrm, rd(8, kXYZ), {r(0)});
+                } else {
+                    b.op(Opcode::Mov, rd(8), {c(kVcZero)});
+                    b.op(Opcode::Mov, rd(8, kZ), {c(kVcOne)});
+                }
+                b.op(Opcode::Dp3, rd(9, kX), {r(1), r(8)});
+                b.op(Opcode::Add, rd(9, kX), {r(9, kSwizzleX), r(9, kSwizzleX)});
+                b.op(Opcode::Mad, rd(10, kXYZ), {negated(r(9, kSwizzleX)), r(1), r(8)});
             }
-            b.op(Opcode::Dp3, rd(9, kX), {r(1), r(8)});
-            b.op(Opcode::Add, rd(9, kX), {r(9, kSwizzleX), r(9, kSwizzleX)});
-            b.op(Opcode::Mad, o_t(kXYZ), {negated(r(9, kSwizzleX)), r(1), r(8)});
+            if (mode == kTciSphereMap) {
+                // OpenGL's sphere map in D3D's camera space (the eye looks along +z, v grows
+                // downwards): m = 2 |(Rx, Ry, Rz - 1)|, (u, v) = (Rx / m + 0.5, -Ry / m + 0.5), so
+                // that a surface facing the eye (R = (0, 0, -1)) reads the map's centre.
+                b.op(Opcode::Mov, rd(9, kXYZ), {r(10)});
+                b.op(Opcode::Add, rd(9, kZ), {r(10, kSwizzleZ), negated(c(kVcOne, kSwizzleZ))});
+                b.op(Opcode::Dp3, rd(9, kW), {r(9), r(9)});
+                b.op(Opcode::Rsq, rd(9, kW), {r(9, kSwizzleW)});
+                b.op(Opcode::Mul, rd(9, kW), {r(9, kSwizzleW), c(kVcHalf)});  // 1 / m
+                b.op(Opcode::Mad, rd(10, kX), {r(10, kSwizzleX), r(9, kSwizzleW), c(kVcHalf)});
+                b.op(Opcode::Mad, rd(10, kY), {negated(r(10, kSwizzleY)), r(9, kSwizzleW), c(kVcHalf)});
+                b.op(Opcode::Mov, rd(10, kZ), {c(kVcZero)});
+            }
+            b.op(Opcode::Mov, rd(10, kW), {c(kVcOne)});
         }
-        b.op(Opcode::Mov, o_t(kW), {c(kVcOne)});
+        if (count != 0 && !pretransformed) {
+            // TEXTURETRANSFORMFLAGS COUNTn: the coordinate through TEXTUREs's matrix; the
+            // rasterizer takes its first n components (the rest are zeroed).
+            const auto base = static_cast<unsigned>(constants.size());
+            for (const auto& column : texture_matrix_columns(ff.texture[s], components)) constants.push_back(column);
+            b.op(Opcode::M4x4, rd(11), {coordinate, c(base)});
+            coordinate = r(11);
+            components = count;
+            const auto beyond = static_cast<uint8_t>(isa::kMaskAll & ~((1u << count) - 1));
+            if (beyond != 0) b.op(Opcode::Mov, rd(11, beyond), {c(kVcZero)});
+        }
+        b.op(Opcode::Mov, o_t(isa::kMaskAll), {coordinate});
+        // D3DTTFF_PROJECTED: the lookup divides by the last of the coordinate's components (the
+        // COUNTn-th; for XYZRHW vertices, which are not transformed, the set's last). The
+        // pixel program divides by w (texldp), so that component goes there.
+        if ((flags & kTtffProjected) != 0 && components < 4) {
+            const uint8_t last = isa::replicate_swizzle(static_cast<uint8_t>(components - 1));
+            coordinate.swizzle = last;
+            b.op(Opcode::Mov, o_t(kW), {coordinate});
+        }
     }
     const auto o_fog = dst(RegisterType::RastOut, 1);  // oFog: a scalar, no write mask
     if (vertex_fog) {
-        // D3D9 "Vertex Fog", range fog off: the distance is camera-space z. LINEAR: (end - d) /
-        // (end - start); EXP: e^-(density d); EXP2: e^-(density d)^2.
+        // D3D9 "Vertex Fog": the distance d is camera-space z, or with RANGEFOGENABLE the
+        // distance from the eye, |P|. LINEAR: (end - d) / (end - start); EXP: e^-(density d);
+        // EXP2: e^-(density d)^2.
         constants[kVcFog] = {rs.fog_end, rs.fog_end != rs.fog_start ? 1.0f / (rs.fog_end - rs.fog_start) : 0.0f,
                              rs.fog_density, 1.4426950408889634f};
+        isa::SourceParameter distance = r(0, kSwizzleZ);
+        if (rs.range_fog_enable) {
+            b.op(Opcode::Dp3, rd(10, kY), {r(0), r(0)});
+            b.op(Opcode::Rsq, rd(10, kY), {r(10, kSwizzleY)});
+            b.op(Opcode::Rcp, rd(10, kY), {r(10, kSwizzleY)});
+            distance = r(10, kSwizzleY);
+        }
         if (rs.fog_vertex_mode == FogMode::Linear) {
-            b.op(Opcode::Add, rd(10, kX), {c(kVcFog, kSwizzleX), negated(r(0, kSwizzleZ))});
+            b.op(Opcode::Add, rd(10, kX), {c(kVcFog, kSwizzleX), negated(distance)});
             b.op(Opcode::Mul, rd(10, kX), {r(10, kSwizzleX), c(kVcFog, kSwizzleY)});
         } else {
-            b.op(Opcode::Mul, rd(10, kX), {r(0, kSwizzleZ), c(kVcFog, kSwizzleZ)});
+            b.op(Opcode::Mul, rd(10, kX), {distance, c(kVcFog, kSwizzleZ)});
             if (rs.fog_vertex_mode == FogMode::Exp2) b.op(Opcode::Mul, rd(10, kX), {r(10, kSwizzleX), r(10, kSwizzleX)});
             b.op(Opcode::Mul, rd(10, kX), {r(10, kSwizzleX), negated(c(kVcFog, kSwizzleW))});
             b.op(Opcode::Exp, rd(10, kX), {r(10, kSwizzleX)});
@@ -537,7 +618,10 @@ FixedFunctionProgram fixed_function_pixel_program(const FixedFunctionState& ff, 
         // A stage without a texture reads TEXTURE as opaque white: D3D9's default stage 0
         // (MODULATE TEXTURE, CURRENT) draws an untextured primitive in its diffuse colour.
         if (samples[s]) {
-            b.op(Opcode::Tex, rd(kRTexture), {src(RegisterType::Texture, s), src(RegisterType::Sampler, s)});
+            // D3DTTFF_PROJECTED: the vertex program put the divisor in w; texldp divides by it.
+            const bool projected = (st[kTssTextureTransformFlags] & kTtffProjected) != 0;
+            b.op(Opcode::Tex, rd(kRTexture), {src(RegisterType::Texture, s), src(RegisterType::Sampler, s)},
+                 projected ? isa::kTexLdProject : 0);
         } else {
             b.op(Opcode::Mov, rd(kRTexture), {c(kPcOne)});
         }

@@ -273,6 +273,127 @@ TEST(FixedFunctionDraw, VertexFogFactorAtAKnownDepth) {
     EXPECT_EQ(fogged("EXP2"), 0xFFC7C7FFu);
 }
 
+// A full-target XYZ quad at z = `z` (identity transforms) of format `fvf`, every vertex
+// carrying the same `attributes` after its position, so that every pixel shows the same value.
+std::string uniform_quad(const std::string& fvf, std::initializer_list<float> attributes, float z = 0.5f) {
+    Words w;
+    for (auto [x, y] : {std::pair{-1.0f, 1.0f}, {1.0f, 1.0f}, {-1.0f, -1.0f}, {1.0f, -1.0f}}) w.f({x, y, z}).f(attributes);
+    return "SetFVF " + fvf + "\nDrawPrimitiveUP TRIANGLESTRIP 2 " + std::to_string(4 * (3 + attributes.size())) + " " +
+           w.blob() + "\n";
+}
+
+// A 4x1 texture, POINT filtered, on stage 0 (SELECTARG1 TEXTURE, LIGHTING off): u in [0, 0.25)
+// reads red, [0.25, 0.5) green, [0.5, 0.75) blue, [0.75, 1) white (WRAP outside).
+const std::string kFourTexels =
+    "CreateTexture tex 4 1 1 A8R8G8B8\n"
+    "LockRect tex 0 u8[ 0 0 255 255  0 255 0 255  255 0 0 255  255 255 255 255 ]\nSetTexture 0 tex\n"
+    "SetSamplerState 0 MINFILTER POINT\nSetSamplerState 0 MAGFILTER POINT\n"
+    "SetRenderState LIGHTING FALSE\nSetTextureStageState 0 COLOROP SELECTARG1\n";
+constexpr uint32_t kTexel0 = 0xFFFF0000u, kTexel1 = 0xFF00FF00u, kTexel2 = 0xFF0000FFu, kTexel3 = 0xFFFFFFFFu;
+
+TEST(FixedFunctionDraw, TextureTransformOfTwoComponentCoordinates) {
+    // D3D9 extends (u, v) to (u, v, 1, 0) for the TEXTURE0 matrix, so the third row translates
+    // a 2D coordinate and the fourth does nothing: row 3 = (0.5, 0, 1, 0), row 4 = (0.1, 0, 0, 1):
+    // u = 0.25 + 0.5 = 0.75 -> white (the fourth row would give 0.35, green; both 0.85, white).
+    const std::string matrix = "SetTransform TEXTURE0 f32[ 1 0 0 0  0 1 0 0  0.5 0 1 0  0.1 0 0 1 ]\n";
+    const std::string quad = uniform_quad("{ XYZ TEX1 }", {0.25f, 0.0f});
+    const Outcome transformed = replay_text(kFourTexels + matrix + "SetTextureStageState 0 TEXTURETRANSFORMFLAGS COUNT2\n" + quad);
+    expect_no_diagnostics(transformed.result);
+    EXPECT_EQ(pixel(transformed, 1, 1), kTexel3);
+    // DISABLE (the default): the matrix is ignored, u = 0.25 -> green.
+    const Outcome untransformed = replay_text(kFourTexels + matrix + quad);
+    expect_no_diagnostics(untransformed.result);
+    EXPECT_EQ(pixel(untransformed, 1, 1), kTexel1);
+}
+
+TEST(FixedFunctionDraw, TextureTransformOfOneComponentCoordinates) {
+    // A 1-component coordinate is extended to (u, 1, 0, 0): the second row translates it.
+    // Row 2 = (0.5, 1, 0, 0): u = 0.25 + 0.5 = 0.75 -> white (a row-4 translation, 0, would leave
+    // 0.25, green).
+    const Outcome o = replay_text(kFourTexels + "SetTransform TEXTURE0 f32[ 1 0 0 0  0.5 1 0 0  0 0 1 0  0 0 0 1 ]\n"
+                                  "SetTextureStageState 0 TEXTURETRANSFORMFLAGS COUNT1\n" +
+                                  uniform_quad("{ XYZ TEX1 TEXCOORDSIZE1_0 }", {0.25f}));
+    expect_no_diagnostics(o.result);
+    EXPECT_EQ(pixel(o, 2, 2), kTexel3);
+}
+
+TEST(FixedFunctionDraw, ProjectedTextureCoordinates) {
+    // D3DTTFF_PROJECTED divides by the last of the COUNTn components. (u, v, q) = (0.3, 0, 0.5)
+    // under COUNT3 PROJECTED (identity matrix): u / q = 0.6 -> blue; COUNT3 alone: 0.3 -> green.
+    const std::string quad = uniform_quad("{ XYZ TEX1 TEXCOORDSIZE3_0 }", {0.3f, 0.0f, 0.5f});
+    const Outcome projected =
+        replay_text(kFourTexels + "SetTextureStageState 0 TEXTURETRANSFORMFLAGS { COUNT3 PROJECTED }\n" + quad);
+    expect_no_diagnostics(projected.result);
+    EXPECT_EQ(pixel(projected, 1, 2), kTexel2);
+    const Outcome plain = replay_text(kFourTexels + "SetTextureStageState 0 TEXTURETRANSFORMFLAGS COUNT3\n" + quad);
+    expect_no_diagnostics(plain.result);
+    EXPECT_EQ(pixel(plain, 1, 2), kTexel1);
+    // A 2D coordinate (0.3, 0) -> (0.3, 0, 1, 0) with row 3 = (0, 0, 2, 0): (0.3, 0, 2), projected
+    // 0.15 -> red.
+    const Outcome from_2d = replay_text(kFourTexels + "SetTransform TEXTURE0 f32[ 1 0 0 0  0 1 0 0  0 0 2 0  0 0 0 1 ]\n"
+                                        "SetTextureStageState 0 TEXTURETRANSFORMFLAGS { COUNT3 PROJECTED }\n" +
+                                        uniform_quad("{ XYZ TEX1 }", {0.3f, 0.0f}));
+    expect_no_diagnostics(from_2d.result);
+    EXPECT_EQ(pixel(from_2d, 1, 2), kTexel0);
+}
+
+TEST(FixedFunctionDraw, TransformedGeneratedCoordinates) {
+    // CAMERASPACEPOSITION (x, y, z, 1) through TEXTURE0 = a scale of x by 0 and a translation of
+    // 0.6 in the fourth row: u = 0.6 everywhere -> blue.
+    const Outcome o = replay_text(kFourTexels + "SetTransform TEXTURE0 f32[ 0 0 0 0  0 1 0 0  0 0 1 0  0.6 0 0 1 ]\n"
+                                  "SetTextureStageState 0 TEXCOORDINDEX { CAMERASPACEPOSITION 0 }\n"
+                                  "SetTextureStageState 0 TEXTURETRANSFORMFLAGS COUNT2\n" +
+                                  uniform_quad("XYZ", {}));
+    expect_no_diagnostics(o.result);
+    EXPECT_EQ(pixel(o, 0, 0), kTexel2);
+    EXPECT_EQ(pixel(o, 3, 3), kTexel2);
+}
+
+TEST(FixedFunctionDraw, SphereMapTextureCoordinates) {
+    // A 2x2 texture: top-left red, top-right green, bottom-left blue, bottom-right white.
+    // LOCALVIEWER off, I = (0, 0, 1); N = (0.48, 0.6, -0.64): N.I = -0.64, R = I - 2 (N.I) N =
+    // (0.6144, 0.768, 0.1808); m = 2 |(Rx, Ry, Rz - 1)| = 2 sqrt(0.37749 + 0.58982 + 0.67109) =
+    // 2.56; u = Rx / m + 0.5 = 0.74, v = -Ry / m + 0.5 = 0.2: the top-right texel, green. (Wine's
+    // Rz + 1 gives (0.70, 0.75) and OpenGL's +Ry / m gives v = 0.8: both bottom-right, white.)
+    const Outcome o = replay_text(
+        "CreateTexture tex 2 2 1 A8R8G8B8\n"
+        "LockRect tex 0 u8[ 0 0 255 255  0 255 0 255  255 0 0 255  255 255 255 255 ]\nSetTexture 0 tex\n"
+        "SetSamplerState 0 MINFILTER POINT\nSetSamplerState 0 MAGFILTER POINT\n"
+        "SetRenderState LIGHTING FALSE\nSetRenderState LOCALVIEWER FALSE\n"
+        "SetTextureStageState 0 COLOROP SELECTARG1\nSetTextureStageState 0 TEXCOORDINDEX { SPHEREMAP 0 }\n" +
+        lit_quad(0.48f, 0.6f, -0.64f));
+    expect_no_diagnostics(o.result);
+    EXPECT_EQ(pixel(o, 1, 1), 0xFF00FF00u);
+}
+
+TEST(FixedFunctionDraw, RangeFogUsesTheDistanceFromTheEye) {
+    // Corners (+-1, +-1, 0.25): RANGEFOGENABLE's distance sqrt(2.0625) = 1.43614 at every vertex;
+    // LINEAR 0..2: f = (2 - 1.43614) / 2 = 0.28193 -> R = G = 71.9 -> 0x48, B (FOGCOLOR blue) 0xFF.
+    // Without range fog d = z = 0.25: f = 0.875 -> 223.1 -> 0xDF.
+    const auto fogged = [](const char* range) {
+        const Outcome o = replay_text(std::string("SetRenderState LIGHTING FALSE\nSetRenderState FOGENABLE TRUE\n"
+                                                  "SetRenderState FOGCOLOR 0xFF0000FF\nSetRenderState FOGSTART 0\n"
+                                                  "SetRenderState FOGEND 2\nSetRenderState FOGVERTEXMODE LINEAR\n"
+                                                  "SetRenderState RANGEFOGENABLE ") +
+                                      range + "\n" + uniform_quad("XYZ", {}, 0.25f));
+        expect_no_diagnostics(o.result);
+        return pixel(o, 2, 1);
+    };
+    EXPECT_EQ(fogged("TRUE"), 0xFF4848FFu);
+    EXPECT_EQ(fogged("FALSE"), 0xFFDFDFFFu);
+}
+
+TEST(FixedFunctionDraw, TableFogOfAFixedFunctionDraw) {
+    // FOGTABLEMODE: the merger's per-pixel factor of the depth (z = 0.25 with identity
+    // transforms), for fixed-function draws as for shaders: EXP density 2: e^-0.5 = 0.60653 ->
+    // 154.67 -> 0x9B.
+    const Outcome o = replay_text(
+        "SetRenderState LIGHTING FALSE\nSetRenderState FOGENABLE TRUE\nSetRenderState FOGCOLOR 0xFF0000FF\n"
+        "SetRenderState FOGDENSITY 2\nSetRenderState FOGTABLEMODE EXP\n" + uniform_quad("XYZ", {}, 0.25f));
+    expect_no_diagnostics(o.result);
+    EXPECT_EQ(pixel(o, 1, 1), 0xFF9B9BFFu);
+}
+
 // Stage 0 = OP(arg1 TFACTOR, arg2 DIFFUSE) over the whole target; the colour at pixel (0, 0).
 uint32_t stage0(const std::string& color_op, uint32_t tfactor, uint32_t diffuse, const std::string& extra = "") {
     const Outcome o = replay_text("SetRenderState TEXTUREFACTOR " + std::to_string(tfactor) +
