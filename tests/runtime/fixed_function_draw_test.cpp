@@ -364,6 +364,14 @@ TEST(FixedFunctionDraw, SphereMapTextureCoordinates) {
         lit_quad(0.48f, 0.6f, -0.64f));
     expect_no_diagnostics(o.result);
     EXPECT_EQ(pixel(o, 1, 1), 0xFF00FF00u);
+    // N = (0.28, 0, -0.96), nearly facing the eye: R = (0.5376, 0, -0.8432), m = 2 sqrt(0.28901
+    // + 3.39737) = 3.84, u = 0.64 -> the 4x1 texture's third texel, blue (Rz + 1 would give m =
+    // 1.12, u = 0.98, white).
+    const Outcome facing = replay_text(kFourTexels + "SetRenderState LOCALVIEWER FALSE\n"
+                                       "SetTextureStageState 0 TEXCOORDINDEX { SPHEREMAP 0 }\n" +
+                                       lit_quad(0.28f, 0, -0.96f));
+    expect_no_diagnostics(facing.result);
+    EXPECT_EQ(pixel(facing, 2, 2), kTexel2);
 }
 
 TEST(FixedFunctionDraw, RangeFogUsesTheDistanceFromTheEye) {
