@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sm2/runtime/device.h"
+
 namespace sm2::runtime {
 
 namespace {
@@ -109,10 +111,11 @@ std::array<float, 4> color_of(uint32_t argb) {
 }
 
 // D3DDECLUSAGE values of the elements the vertex program reads.
-constexpr uint8_t kUsagePosition = 0, kUsageNormal = 3, kUsageTexCoord = 5, kUsagePositionT = 9, kUsageColor = 10;
+constexpr uint8_t kUsagePosition = 0, kUsageBlendWeight = 1, kUsageBlendIndices = 2, kUsageNormal = 3, kUsageTexCoord = 5, kUsagePositionT = 9, kUsageColor = 10;
 
 // Vertex program input registers.
-constexpr unsigned kInPosition = 0, kInDiffuse = 1, kInSpecular = 2, kInTexCoord0 = 3, kInNormal = 11;
+constexpr unsigned kInPosition = 0, kInDiffuse = 1, kInSpecular = 2, kInTexCoord0 = 3, kInNormal = 11,
+                   kInBlendWeight = 12, kInBlendIndices = 13;
 // Vertex program constants.
 constexpr unsigned kVcTransform = 0;       // c0..c3: (world x view x projection) transposed, or
                                            // c0: the XYZRHW screen -> clip mapping
@@ -126,14 +129,20 @@ constexpr unsigned kVcMaterial = 15;       // c15..c18: material diffuse, ambien
 constexpr unsigned kVcPower = 19;          // (power, 0, 0, 0)
 constexpr unsigned kVcFog = 20;            // (FOGEND, 1 / (FOGEND - FOGSTART), FOGDENSITY, log2 e)
 constexpr unsigned kVcHalf = 21;           // (0.5, 0.5, 0.5, 0.5): sphere map scale and offset
-constexpr unsigned kVcLightFirst = 22;     // kLightConstants per enabled light, then 4 per
-                                           // transformed texture stage (its matrix's columns):
+constexpr unsigned kVcBlendIndexScale = 22;  // indexed blending: vertex index -> palette offset
+constexpr unsigned kVcLightFirst = 23;     // kLightConstants per enabled light:
 constexpr unsigned kLightDiffuse = 0, kLightSpecular = 1, kLightAmbient = 2,
                    kLightVector = 3,       // directional: direction to the light; point: position (camera space)
                    kLightAttenuation = 4,  // (attenuation0, 1, 2, range)
                    kLightSpotAxis = 5,     // spot: the reversed direction (camera space, normalized)
                    kLightSpotCone = 6,     // spot: (cos(theta/2), cos(phi/2), 1 / (cos(theta/2) - cos(phi/2)), falloff)
                    kLightConstants = 7;
+// Indexed vertex blending's matrix palette, after the most the constants above can take (8 lights,
+// 8 texture matrices): per WORLDMATRIX(n), world x view's columns, then with normals the rows of
+// its 3x3's inverse.
+constexpr unsigned kVcTextureMatrixFirst = kVcLightFirst + kLightConstants * kMaxActiveLights;  // 4 per stage
+constexpr unsigned kVcPalette = kVcTextureMatrixFirst + 4 * kMaxTextureStages;
+constexpr unsigned kBlendMatrixConstants = 4, kBlendNormalConstants = 3;
 
 std::array<float, 4> rgba(const ColorValue& c) { return {c.r, c.g, c.b, c.a}; }
 
@@ -162,6 +171,22 @@ std::array<float, 9> inverse3(const std::array<float, 9>& m) {
             static_cast<float>((a * e - b * d) * k)};
 }
 
+// A row-major matrix's columns: what m4x4 (dot products with c0..c3) needs for row vectors.
+std::array<std::array<float, 4>, 4> columns_of(const Matrix4& m) {
+    std::array<std::array<float, 4>, 4> columns{};
+    for (unsigned row = 0; row < 4; ++row)
+        for (unsigned col = 0; col < 4; ++col) columns[col][row] = m[row * 4 + col];
+    return columns;
+}
+
+// The 3 rows m3x3 needs to take a normal through the inverse transpose of a matrix's 3x3.
+std::array<std::array<float, 4>, 3> normal_rows(const Matrix4& m) {
+    const auto inv = inverse3({m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10]});
+    std::array<std::array<float, 4>, 3> rows{};
+    for (unsigned j = 0; j < 3; ++j) rows[j] = {inv[j * 3], inv[j * 3 + 1], inv[j * 3 + 2], 0};
+    return rows;
+}
+
 // The number of components a vertex element supplies (the rest are fetched as (0, 0, 0, 1)).
 unsigned decl_type_components(uint8_t type) {
     switch (static_cast<DeclType>(type)) {
@@ -181,10 +206,7 @@ std::array<std::array<float, 4>, 4> texture_matrix_columns(const Matrix4& m, uns
     Matrix4 adjusted = m;
     if (components <= 2)
         for (unsigned col = 0; col < 4; ++col) adjusted[12 + col] = m[components * 4 + col];
-    std::array<std::array<float, 4>, 4> columns{};
-    for (unsigned row = 0; row < 4; ++row)
-        for (unsigned col = 0; col < 4; ++col) columns[col][row] = adjusted[row * 4 + col];
-    return columns;
+    return columns_of(adjusted);
 }
 
 }  // namespace
@@ -195,7 +217,11 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
     bool has_position = false, pretransformed = false, has_diffuse = false, has_specular = false, has_normal = false;
     std::array<bool, 8> has_texcoord{};
     std::array<unsigned, 8> texcoord_components{};
+    unsigned blend_weights = 0;  // components of BLENDWEIGHT 0
+    std::optional<DeclType> blend_indices;
     for (const auto& e : declaration) {
+        if (e.usage == kUsageBlendWeight && e.usage_index == 0) blend_weights = decl_type_components(e.type);
+        if (e.usage == kUsageBlendIndices && e.usage_index == 0) blend_indices = static_cast<DeclType>(e.type);
         if (e.usage == kUsagePosition && e.usage_index == 0) has_position = true;
         if (e.usage == kUsagePositionT && e.usage_index == 0) has_position = pretransformed = true;
         if (e.usage == kUsageNormal && e.usage_index == 0) has_normal = true;
@@ -208,7 +234,19 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
     }
     if (!has_position) return refused("fixed-function vertex processing: the declaration has no POSITION or POSITIONT 0");
     const bool lighting = states.lighting && !pretransformed;
-    if (!pretransformed && states.vertex_blend != 0) return refused("fixed-function vertex blending is not emulated");
+    // D3DVBF_*: DISABLE 0, 1WEIGHTS..3WEIGHTS, TWEENING 255, 0WEIGHTS 256. n weights blend n + 1
+    // matrices, the last weighted 1 - (the sum of the others).
+    constexpr uint32_t kVbfTweening = 255, kVbf0Weights = 256;
+    if (states.vertex_blend == kVbfTweening) return refused("VERTEXBLEND TWEENING is not emulated");
+    if (states.vertex_blend > 3 && states.vertex_blend != kVbf0Weights)
+        return refused("VERTEXBLEND " + std::to_string(states.vertex_blend) + " is not a D3DVERTEXBLENDFLAGS value");
+    const unsigned weights = states.vertex_blend == kVbf0Weights ? 0 : states.vertex_blend;
+    const bool indexed_blend = !pretransformed && states.indexed_vertex_blend;
+    const bool blending = !pretransformed && (weights > 0 || indexed_blend);
+    if (blending && weights > blend_weights)
+        return refused("VERTEXBLEND " + std::to_string(weights) + " weights: the vertex has " +
+                       std::to_string(blend_weights));
+    if (indexed_blend && !blend_indices) return refused("INDEXEDVERTEXBLENDENABLE: the vertex has no BLENDINDICES");
     const bool vertex_fog =
         rs.fog_enable && rs.fog_table_mode == FogMode::None && !pretransformed && rs.fog_vertex_mode != FogMode::None;
     std::vector<const Light*> lights;
@@ -261,8 +299,10 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
             b.dcl_input(RegisterType::Input, kInTexCoord0 + t, isa::DeclUsage::TexCoord, static_cast<uint8_t>(t));
     const bool needs_normal = lighting || generates_from_normal;
     if (needs_normal && has_normal) b.dcl_input(RegisterType::Input, kInNormal, isa::DeclUsage::Normal, 0);
+    if (blending && weights > 0) b.dcl_input(RegisterType::Input, kInBlendWeight, isa::DeclUsage::BlendWeight, 0);
+    if (indexed_blend) b.dcl_input(RegisterType::Input, kInBlendIndices, isa::DeclUsage::BlendIndices, 0);
 
-    std::vector<std::array<float, 4>> constants(kVcLightFirst + kLightConstants * lights.size(),
+    std::vector<std::array<float, 4>> constants(blending ? kMaxVertexShaderConstantsF : kVcPalette,
                                                 std::array<float, 4>{0, 0, 0, 0});
     constants[kVcDefaultDiffuse] = {1, 1, 1, 1};
     constants[kVcOne] = {1, 1, 1, 1};
@@ -282,33 +322,98 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
         b.op(Opcode::Mov, dst(RegisterType::Temp, 1, kZ), {in(kInPosition)});
         b.op(Opcode::Mul, o_pos(kXYZ), {r(1), r(0, kSwizzleW)});
         b.op(Opcode::Mov, o_pos(kW), {r(0, kSwizzleW)});
-    } else {
+    } else if (!blending) {
         // Row vectors: p' = p (World View Projection); m4x4 takes dot products with rows c0..c3,
         // so the constants hold the product's columns.
-        const Matrix4 wvp = multiply(world_view, ff.projection);
-        for (unsigned row = 0; row < 4; ++row)
-            for (unsigned col = 0; col < 4; ++col) {
-                constants[kVcTransform + row][col] = wvp[col * 4 + row];
-                constants[kVcWorldView + row][col] = world_view[col * 4 + row];
-            }
+        const auto wvp = columns_of(multiply(world_view, ff.projection));
+        const auto wv = columns_of(world_view);
+        std::copy(wvp.begin(), wvp.end(), constants.begin() + kVcTransform);
+        std::copy(wv.begin(), wv.end(), constants.begin() + kVcWorldView);
         b.op(Opcode::M4x4, o_pos(isa::kMaskAll), {in(kInPosition), c(kVcTransform)});
-    }
-    // Camera-space position in r0 (lighting and fog read it).
-    if (lighting || vertex_fog || generates_from_position) b.op(Opcode::M4x4, rd(0), {in(kInPosition), c(kVcWorldView)});
-    // Camera-space normal in r1 (lighting and texgen read it): through the inverse transpose of
-    // world x view's 3x3, normalized with NORMALIZENORMALS; (0, 0, 0) when the vertex has none.
-    if (needs_normal) {
-        const std::array<float, 9> wv3{world_view[0], world_view[1], world_view[2], world_view[4], world_view[5],
-                                       world_view[6], world_view[8], world_view[9], world_view[10]};
-        const auto inv = inverse3(wv3);
-        for (unsigned j = 0; j < 3; ++j) constants[kVcNormal + j] = {inv[j * 3], inv[j * 3 + 1], inv[j * 3 + 2], 0};
-        if (has_normal) {
-            // nrm may not write its own source: the transformed normal goes through r11.
-            b.op(Opcode::M3x3, rd(states.normalize_normals ? 11 : 1, kXYZ), {in(kInNormal), c(kVcNormal)});
-            if (states.normalize_normals) b.op(Opcode::Nrm, rd(1, kXYZ), {r(11)});
-        } else {
-            b.op(Opcode::Mov, rd(1), {c(kVcZero)});
+        // Camera-space position in r0 (lighting and fog read it).
+        if (lighting || vertex_fog || generates_from_position)
+            b.op(Opcode::M4x4, rd(0), {in(kInPosition), c(kVcWorldView)});
+        // Camera-space normal in r1 (lighting and texgen read it): through the inverse transpose of
+        // world x view's 3x3, normalized with NORMALIZENORMALS; (0, 0, 0) when the vertex has none.
+        if (needs_normal) {
+            const auto rows = normal_rows(world_view);
+            std::copy(rows.begin(), rows.end(), constants.begin() + kVcNormal);
+            if (has_normal) {
+                // nrm may not write its own source: the transformed normal goes through r11.
+                b.op(Opcode::M3x3, rd(states.normalize_normals ? 11 : 1, kXYZ), {in(kInNormal), c(kVcNormal)});
+                if (states.normalize_normals) b.op(Opcode::Nrm, rd(1, kXYZ), {r(11)});
+            } else {
+                b.op(Opcode::Mov, rd(1), {c(kVcZero)});
+            }
         }
+    } else {
+        // Vertex blending (D3D9 "Geometry Blending", "Indexed Vertex Blending"): the camera-space
+        // position sum_i w_i p (World_i View), with w_n = 1 - (w_0 + ... + w_n-1), and the normal
+        // sum_i w_i n (World_i View)^-T (normalized with NORMALIZENORMALS); World_i is WORLDMATRIX(i),
+        // or with INDEXEDVERTEXBLENDENABLE WORLDMATRIX(the vertex's i-th index), read from the
+        // palette by relative addressing. Then oPos = P Projection.
+        const bool blend_normals = needs_normal && has_normal;
+        const unsigned stride = kBlendMatrixConstants + (blend_normals ? kBlendNormalConstants : 0);
+        const auto store_matrix = [&](unsigned base, const Matrix4& world) {
+            const Matrix4 wv = multiply(world, ff.view);
+            const auto columns = columns_of(wv);
+            std::copy(columns.begin(), columns.end(), constants.begin() + base);
+            if (blend_normals) {
+                const auto rows = normal_rows(wv);
+                std::copy(rows.begin(), rows.end(), constants.begin() + base + kBlendMatrixConstants);
+            }
+        };
+        const auto projection = columns_of(ff.projection);
+        std::copy(projection.begin(), projection.end(), constants.begin() + kVcTransform);
+        const unsigned matrices = weights + 1;
+        if (indexed_blend) {
+            // The palette holds as many matrices as the constants left take (non-indexed blending
+            // puts its at most 4 matrices at the same place); an index past it
+            // reads zero (relative reads outside the constant file), as docs/fixed-function.md says.
+            const unsigned palette = (kMaxVertexShaderConstantsF - kVcPalette) / stride;
+            for (unsigned m = 0; m < palette; ++m) store_matrix(kVcPalette + m * stride, ff.world[m]);
+            // D3DCOLOR indices are fetched as (R, G, B, A) / 255, i.e. bytes 2, 1, 0, 3: .zyxw puts
+            // them back in memory order, as UBYTE4 has them.
+            const float scale = static_cast<float>(stride) * (*blend_indices == DeclType::D3DCOLOR ? 255.0f : 1.0f);
+            constants[kVcBlendIndexScale] = {scale, scale, scale, scale};
+            constexpr uint8_t kSwizzleZYXW = 0xC6;
+            const auto indices = *blend_indices == DeclType::D3DCOLOR ? in(kInBlendIndices, kSwizzleZYXW) : in(kInBlendIndices);
+            b.op(Opcode::Mul, rd(6), {indices, c(kVcBlendIndexScale)});
+        } else {
+            for (unsigned m = 0; m < matrices; ++m) store_matrix(kVcPalette + m * stride, ff.world[m]);
+        }
+        // r7.x: the last matrix's weight.
+        b.op(Opcode::Mov, rd(7, kX), {c(kVcOne)});
+        for (unsigned i = 0; i < weights; ++i)
+            b.op(Opcode::Add, rd(7, kX), {r(7, kSwizzleX), negated(in(kInBlendWeight, isa::replicate_swizzle(static_cast<uint8_t>(i))))});
+        b.op(Opcode::Mov, rd(0), {c(kVcZero)});
+        if (needs_normal) b.op(Opcode::Mov, rd(1), {c(kVcZero)});
+        if (blend_normals && states.normalize_normals) b.op(Opcode::Mov, rd(11), {c(kVcZero)});
+        for (unsigned i = 0; i < matrices; ++i) {
+            const auto weight = i < weights ? in(kInBlendWeight, isa::replicate_swizzle(static_cast<uint8_t>(i))) : r(7, kSwizzleX);
+            const auto row = [&](unsigned k) {
+                if (!indexed_blend) return c(kVcPalette + i * stride + k);
+                isa::SourceParameter p = c(kVcPalette + k);
+                p.relative = isa::RelativeAddress{RegisterType::Address, 0x00};
+                return p;
+            };
+            if (indexed_blend)
+                b.op(Opcode::Mova, dst(RegisterType::Address, 0, kX), {r(6, isa::replicate_swizzle(static_cast<uint8_t>(i)))});
+            for (unsigned k = 0; k < 4; ++k)
+                b.op(Opcode::Dp4, rd(8, static_cast<uint8_t>(1u << k)), {in(kInPosition), row(k)});
+            b.op(Opcode::Mad, rd(0), {r(8), weight, r(0)});
+            if (blend_normals) {
+                for (unsigned k = 0; k < 3; ++k)
+                    b.op(Opcode::Dp3, rd(9, static_cast<uint8_t>(1u << k)), {in(kInNormal), row(kBlendMatrixConstants + k)});
+                b.op(Opcode::Mad, rd(states.normalize_normals ? 11 : 1, kXYZ),
+                     {r(9), weight, r(states.normalize_normals ? 11 : 1)});
+            }
+        }
+        if (blend_normals && states.normalize_normals) {
+            // Accumulated in r11 (nrm may not write its own source).
+            b.op(Opcode::Nrm, rd(1, kXYZ), {r(11)});
+        }
+        b.op(Opcode::M4x4, o_pos(isa::kMaskAll), {r(0), c(kVcTransform)});
     }
 
     if (lighting) {
@@ -470,8 +575,9 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
         if (count != 0 && !pretransformed) {
             // TEXTURETRANSFORMFLAGS COUNTn: the coordinate through TEXTUREs's matrix; the
             // rasterizer takes its first n components (the rest are zeroed).
-            const auto base = static_cast<unsigned>(constants.size());
-            for (const auto& column : texture_matrix_columns(ff.texture[s], components)) constants.push_back(column);
+            const unsigned base = kVcTextureMatrixFirst + 4 * s;
+            const auto columns = texture_matrix_columns(ff.texture[s], components);
+            std::copy(columns.begin(), columns.end(), constants.begin() + base);
             b.op(Opcode::M4x4, rd(11), {coordinate, c(base)});
             coordinate = r(11);
             components = count;

@@ -402,6 +402,78 @@ TEST(FixedFunctionDraw, TableFogOfAFixedFunctionDraw) {
     EXPECT_EQ(pixel(o, 1, 1), 0xFF9B9BFFu);
 }
 
+// The columns (0..3) of row 1 that a blended draw covers, as a 4-character mask ("0110").
+std::string covered_columns(const Outcome& o) {
+    std::string mask;
+    for (unsigned x = 0; x < 4; ++x) mask += pixel(o, x, 1) == 0xFF000000u ? '0' : '1';
+    return mask;
+}
+
+// A quad over the left half of clip space (x in [-1, 0]) of format `fvf`, every vertex with the
+// same `attributes` (blend weights, indices) after its position; lighting off, white.
+std::string left_half_quad(const std::string& fvf, const Words& attributes) {
+    Words w;
+    for (auto [x, y] : {std::pair{-1.0f, 1.0f}, {0.0f, 1.0f}, {-1.0f, -1.0f}, {0.0f, -1.0f}}) {
+        w.f({x, y, 0.5f});
+        w.words.insert(w.words.end(), attributes.words.begin(), attributes.words.end());
+    }
+    return "SetRenderState LIGHTING FALSE\nSetFVF " + fvf + "\nDrawPrimitiveUP TRIANGLESTRIP 2 " +
+           std::to_string(4 * (3 + attributes.words.size())) + " " + w.blob() + "\n";
+}
+
+TEST(FixedFunctionDraw, VertexBlendingWithOneWeight) {
+    // VERTEXBLEND 1WEIGHTS: p' = w p WORLD + (1 - w) p WORLD1. WORLD translates x by 2, WORLD1 is
+    // the identity, w = 0.25: x + 0.5, so the quad spans [-0.5, 0.5]: pixel columns 1 and 2
+    // (centres at -0.75, -0.25, 0.25, 0.75). The weights the other way round (0.75 to WORLD)
+    // would give [0.5, 1.5], column 3; no blending, WORLD alone, nothing on screen.
+    const std::string translate2 = "SetTransform WORLD f32[ 1 0 0 0  0 1 0 0  0 0 1 0  2 0 0 1 ]\n";
+    const std::string quad = left_half_quad("{ XYZB1 }", Words().f({0.25f}));
+    const Outcome blended = replay_text(translate2 + "SetRenderState VERTEXBLEND 1\n" + quad);
+    expect_no_diagnostics(blended.result);
+    EXPECT_EQ(covered_columns(blended), "0110");
+    const Outcome unblended = replay_text(translate2 + quad);
+    expect_no_diagnostics(unblended.result);
+    EXPECT_EQ(covered_columns(unblended), "0000");
+}
+
+TEST(FixedFunctionDraw, IndexedVertexBlending) {
+    // INDEXEDVERTEXBLENDENABLE with one weight: the vertex's indices (5, 2) pick WORLDMATRIX(5)
+    // (x + 2) for w = 0.25 and WORLDMATRIX(2) (identity) for 0.75: x + 0.5, columns 1 and 2 as in
+    // VertexBlendingWithOneWeight. The indices are the bytes in memory order, for UBYTE4 and for
+    // D3DCOLOR alike (a D3DCOLOR word 0x00000205 holds bytes 5, 2, 0, 0; read as (R, G, B) it
+    // would give indices (0, 2, 5): no shift, columns 0 and 1).
+    const std::string state = "SetTransform WORLDMATRIX5 f32[ 1 0 0 0  0 1 0 0  0 0 1 0  2 0 0 1 ]\n"
+                              "SetTransform WORLD f32[ 1 0 0 0  0 1 0 0  0 0 1 0  -2 0 0 1 ]\n"
+                              "SetRenderState VERTEXBLEND 1\nSetRenderState INDEXEDVERTEXBLENDENABLE TRUE\n";
+    for (const char* fvf : {"{ XYZB2 LASTBETA_UBYTE4 }", "{ XYZB2 LASTBETA_D3DCOLOR }"}) {
+        const Outcome o = replay_text(state + left_half_quad(fvf, Words().f({0.25f}).color(0x00000205u)));
+        expect_no_diagnostics(o.result);
+        EXPECT_EQ(covered_columns(o), "0110") << fvf;
+    }
+}
+
+TEST(FixedFunctionDraw, BlendedNormalsUseEachMatrixsInverseTranspose) {
+    // Directional light along +z (L = (0, 0, -1)), white, material diffuse 1; n = (0, 0, -1).
+    // WORLD identity, WORLD1 scales z by 2, whose inverse transpose scales it by 0.5; w = 0.5:
+    // N = 0.5 (0, 0, -1) + 0.5 (0, 0, -0.5) = (0, 0, -0.75), N.L = 0.75 -> 191.25 -> 0xBF (WORLD1
+    // itself would give (0, 0, -1.5), 255). NORMALIZENORMALS: N = (0, 0, -1) -> 0xFF.
+    Words w;
+    for (auto [x, y] : {std::pair{-1.0f, 1.0f}, {1.0f, 1.0f}, {-1.0f, -1.0f}, {1.0f, -1.0f}})
+        w.f({x, y, 0.25f, 0.5f, 0.0f, 0.0f, -1.0f});
+    const auto lit = [&](const char* normalize) {
+        const Outcome o = replay_text(
+            std::string("SetMaterial { 1 1 1 1 } { 0 0 0 0 } { 0 0 0 0 } { 0 0 0 0 } 0\n"
+                        "SetLight 0 DIRECTIONAL { 1 1 1 1 } { 0 0 0 0 } { 0 0 0 0 } { 0 0 0 } { 0 0 1 } 0 0 0 0 0 0 0\n"
+                        "LightEnable 0 TRUE\nSetTransform WORLD1 f32[ 1 0 0 0  0 1 0 0  0 0 2 0  0 0 0 1 ]\n"
+                        "SetRenderState VERTEXBLEND 1\nSetRenderState NORMALIZENORMALS ") +
+            normalize + "\nSetFVF { XYZB1 NORMAL }\nDrawPrimitiveUP TRIANGLESTRIP 2 28 " + w.blob() + "\n");
+        expect_no_diagnostics(o.result);
+        return pixel(o, 1, 1);
+    };
+    EXPECT_EQ(lit("FALSE"), 0xFFBFBFBFu);
+    EXPECT_EQ(lit("TRUE"), 0xFFFFFFFFu);
+}
+
 // Stage 0 = OP(arg1 TFACTOR, arg2 DIFFUSE) over the whole target; the colour at pixel (0, 0).
 uint32_t stage0(const std::string& color_op, uint32_t tfactor, uint32_t diffuse, const std::string& extra = "") {
     const Outcome o = replay_text("SetRenderState TEXTUREFACTOR " + std::to_string(tfactor) +
