@@ -441,7 +441,7 @@ TEST(FixedFunctionDraw, IndexedVertexBlending) {
     // (x + 2) for w = 0.25 and WORLDMATRIX(2) (identity) for 0.75: x + 0.5, columns 1 and 2 as in
     // VertexBlendingWithOneWeight. The indices are the bytes in memory order, for UBYTE4 and for
     // D3DCOLOR alike (a D3DCOLOR word 0x00000205 holds bytes 5, 2, 0, 0; read as (R, G, B) it
-    // would give indices (0, 2, 5): no shift, columns 0 and 1).
+    // would give indices (0, 2, 5): WORLD, x - 2, for w: x - 0.5, column 0).
     const std::string state = "SetTransform WORLDMATRIX5 f32[ 1 0 0 0  0 1 0 0  0 0 1 0  2 0 0 1 ]\n"
                               "SetTransform WORLD f32[ 1 0 0 0  0 1 0 0  0 0 1 0  -2 0 0 1 ]\n"
                               "SetRenderState VERTEXBLEND 1\nSetRenderState INDEXEDVERTEXBLENDENABLE TRUE\n";
