@@ -111,11 +111,11 @@ std::array<float, 4> color_of(uint32_t argb) {
 }
 
 // D3DDECLUSAGE values of the elements the vertex program reads.
-constexpr uint8_t kUsagePosition = 0, kUsageBlendWeight = 1, kUsageBlendIndices = 2, kUsageNormal = 3, kUsageTexCoord = 5, kUsagePositionT = 9, kUsageColor = 10;
+constexpr uint8_t kUsagePosition = 0, kUsageBlendWeight = 1, kUsageBlendIndices = 2, kUsageNormal = 3, kUsagePSize = 4, kUsageTexCoord = 5, kUsagePositionT = 9, kUsageColor = 10;
 
 // Vertex program input registers.
 constexpr unsigned kInPosition = 0, kInDiffuse = 1, kInSpecular = 2, kInTexCoord0 = 3, kInNormal = 11,
-                   kInBlendWeight = 12, kInBlendIndices = 13;
+                   kInBlendWeight = 12, kInBlendIndices = 13, kInPointSize = 14;
 // Vertex program constants.
 constexpr unsigned kVcTransform = 0;       // c0..c3: (world x view x projection) transposed, or
                                            // c0: the XYZRHW screen -> clip mapping
@@ -130,7 +130,9 @@ constexpr unsigned kVcPower = 19;          // (power, 0, 0, 0)
 constexpr unsigned kVcFog = 20;            // (FOGEND, 1 / (FOGEND - FOGSTART), FOGDENSITY, log2 e)
 constexpr unsigned kVcHalf = 21;           // (0.5, 0.5, 0.5, 0.5): sphere map scale and offset
 constexpr unsigned kVcBlendIndexScale = 22;  // indexed blending: vertex index -> palette offset
-constexpr unsigned kVcLightFirst = 23;     // kLightConstants per enabled light:
+constexpr unsigned kVcPointScale = 23;     // (POINTSCALE_A, _B, _C, viewport height)
+constexpr unsigned kVcPointSize = 24;      // (POINTSIZE, 0, 0, 0)
+constexpr unsigned kVcLightFirst = 25;     // kLightConstants per enabled light:
 constexpr unsigned kLightDiffuse = 0, kLightSpecular = 1, kLightAmbient = 2,
                    kLightVector = 3,       // directional: direction to the light; point: position (camera space)
                    kLightAttenuation = 4,  // (attenuation0, 1, 2, range)
@@ -218,9 +220,11 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
     std::array<bool, 8> has_texcoord{};
     std::array<unsigned, 8> texcoord_components{};
     unsigned blend_weights = 0;  // components of BLENDWEIGHT 0
+    bool has_point_size = false;
     std::optional<DeclType> blend_indices;
     for (const auto& e : declaration) {
         if (e.usage == kUsageBlendWeight && e.usage_index == 0) blend_weights = decl_type_components(e.type);
+        if (e.usage == kUsagePSize && e.usage_index == 0) has_point_size = true;
         if (e.usage == kUsageBlendIndices && e.usage_index == 0) blend_indices = static_cast<DeclType>(e.type);
         if (e.usage == kUsagePosition && e.usage_index == 0) has_position = true;
         if (e.usage == kUsagePositionT && e.usage_index == 0) has_position = pretransformed = true;
@@ -301,6 +305,8 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
     if (needs_normal && has_normal) b.dcl_input(RegisterType::Input, kInNormal, isa::DeclUsage::Normal, 0);
     if (blending && weights > 0) b.dcl_input(RegisterType::Input, kInBlendWeight, isa::DeclUsage::BlendWeight, 0);
     if (indexed_blend) b.dcl_input(RegisterType::Input, kInBlendIndices, isa::DeclUsage::BlendIndices, 0);
+    const bool point_scale = rs.point_scale_enable && !pretransformed;
+    if (has_point_size) b.dcl_input(RegisterType::Input, kInPointSize, isa::DeclUsage::PointSize, 0);
 
     std::vector<std::array<float, 4>> constants(blending ? kMaxVertexShaderConstantsF : kVcPalette,
                                                 std::array<float, 4>{0, 0, 0, 0});
@@ -330,8 +336,8 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
         std::copy(wvp.begin(), wvp.end(), constants.begin() + kVcTransform);
         std::copy(wv.begin(), wv.end(), constants.begin() + kVcWorldView);
         b.op(Opcode::M4x4, o_pos(isa::kMaskAll), {in(kInPosition), c(kVcTransform)});
-        // Camera-space position in r0 (lighting and fog read it).
-        if (lighting || vertex_fog || generates_from_position)
+        // Camera-space position in r0 (lighting, fog and point scale read it).
+        if (lighting || vertex_fog || generates_from_position || point_scale)
             b.op(Opcode::M4x4, rd(0), {in(kInPosition), c(kVcWorldView)});
         // Camera-space normal in r1 (lighting and texgen read it): through the inverse transpose of
         // world x view's 3x3, normalized with NORMALIZENORMALS; (0, 0, 0) when the vertex has none.
@@ -625,6 +631,28 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
         // FOGVERTEXMODE NONE (and XYZRHW vertices): the fog factor is the specular colour's
         // alpha (D3D9, "Vertex Fog"); with no specular in the vertex, no fog (factor 1).
         b.op(Opcode::Mov, o_fog, {has_specular ? in(kInSpecular, kSwizzleW) : c(kVcOne, kSwizzleW)});
+    }
+    if (has_point_size || point_scale) {
+        // oPts: the vertex's PSIZE, else POINTSIZE; with POINTSCALEENABLE (D3D9 "Point Sprites")
+        // times Vh sqrt(1 / (A + B De + C De^2)), De the distance from the eye. The rasterizer
+        // clamps it to POINTSIZE_MIN..POINTSIZE_MAX as for a shader's oPts.
+        constants[kVcPointSize] = {rs.point_size, 0, 0, 0};
+        const auto size = has_point_size ? in(kInPointSize, kSwizzleX) : c(kVcPointSize, kSwizzleX);
+        const auto o_pts = dst(RegisterType::RastOut, 2);  // a scalar, no write mask
+        if (point_scale) {
+            constants[kVcPointScale] = {rs.point_scale_a, rs.point_scale_b, rs.point_scale_c,
+                                        static_cast<float>(viewport.height)};
+            b.op(Opcode::Dp3, rd(8, kZ), {r(0), r(0)});                      // De^2
+            b.op(Opcode::Rsq, rd(8, kW), {r(8, kSwizzleZ)});
+            b.op(Opcode::Rcp, rd(8, kW), {r(8, kSwizzleW)});                   // De
+            b.op(Opcode::Mad, rd(8, kY), {c(kVcPointScale, kSwizzleY), r(8, kSwizzleW), c(kVcPointScale, kSwizzleX)});
+            b.op(Opcode::Mad, rd(8, kY), {c(kVcPointScale, kSwizzleZ), r(8, kSwizzleZ), r(8, kSwizzleY)});
+            b.op(Opcode::Rsq, rd(8, kY), {r(8, kSwizzleY)});
+            b.op(Opcode::Mul, rd(8, kY), {r(8, kSwizzleY), c(kVcPointScale, kSwizzleW)});
+            b.op(Opcode::Mul, o_pts, {size, r(8, kSwizzleY)});
+        } else {
+            b.op(Opcode::Mov, o_pts, {size});
+        }
     }
     return std::move(b).finish(std::move(constants));
 }

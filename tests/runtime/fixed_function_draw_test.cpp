@@ -474,6 +474,67 @@ TEST(FixedFunctionDraw, BlendedNormalsUseEachMatrixsInverseTranspose) {
     EXPECT_EQ(lit("TRUE"), 0xFFFFFFFFu);
 }
 
+// The 4x4 target as 16 characters, '1' where a pixel is not the clear colour.
+std::string coverage(const Outcome& o) {
+    std::string mask;
+    for (unsigned y = 0; y < 4; ++y)
+        for (unsigned x = 0; x < 4; ++x) mask += pixel(o, x, y) == 0xFF000000u ? '0' : '1';
+    return mask;
+}
+
+TEST(FixedFunctionDraw, PointSizeFromTheVertex) {
+    // XYZRHW | PSIZE | DIFFUSE point at pixel centre (2, 2), PSIZE 3: the square [0.5, 3.5]^2
+    // holds the centres 1..3 in both directions. Without PSIZE, POINTSIZE (1): pixel (2, 2) only.
+    Words with;
+    with.f({2, 2, 0.5f, 1, 3}).color(0xFFFFFFFFu);
+    const Outcome sized = replay_text("SetFVF { XYZRHW PSIZE DIFFUSE }\nDrawPrimitiveUP POINTLIST 1 24 " + with.blob() + "\n");
+    expect_no_diagnostics(sized.result);
+    EXPECT_EQ(coverage(sized), "0000" "0111" "0111" "0111");
+    Words without;
+    without.f({2, 2, 0.5f, 1}).color(0xFFFFFFFFu);
+    const Outcome plain = replay_text("SetFVF { XYZRHW DIFFUSE }\nDrawPrimitiveUP POINTLIST 1 20 " + without.blob() + "\n");
+    expect_no_diagnostics(plain.result);
+    EXPECT_EQ(coverage(plain), "0000" "0000" "0010" "0000");
+}
+
+TEST(FixedFunctionDraw, PointScaleWithTheDistanceFromTheEye) {
+    // An XYZ point at (0.5, 0, 0.5) (identity transforms: pixel centre (3, 2)), POINTSIZE 0.53033,
+    // POINTSCALEENABLE with A = B = 0, C = 1: De = |(0.5, 0, 0.5)| = 0.70711, size = Vh Si
+    // sqrt(1 / (C De^2)) = 4 * 0.53033 / 0.70711 = 3: [1.5, 4.5] x [0.5, 3.5], columns 2..3, rows
+    // 1..3. (De = z, 0.5, would give 4.24: columns 1..3, rows 0..3.) Unscaled, 0.53033 is raised
+    // to POINTSIZE_MIN (1): pixel (3, 2) only.
+    Words w;
+    w.f({0.5f, 0, 0.5f});
+    const std::string draw = "SetRenderState LIGHTING FALSE\nSetRenderState POINTSIZE 0.53033\n"
+                             "SetRenderState POINTSCALE_A 0\nSetRenderState POINTSCALE_B 0\n"
+                             "SetRenderState POINTSCALE_C 1\nSetFVF XYZ\nDrawPrimitiveUP POINTLIST 1 12 " + w.blob() + "\n";
+    const Outcome scaled = replay_text("SetRenderState POINTSCALEENABLE TRUE\n" + draw);
+    expect_no_diagnostics(scaled.result);
+    EXPECT_EQ(coverage(scaled), "0000" "0011" "0011" "0011");
+    const Outcome unscaled = replay_text(draw);
+    expect_no_diagnostics(unscaled.result);
+    EXPECT_EQ(coverage(unscaled), "0000" "0000" "0001" "0000");
+}
+
+TEST(FixedFunctionDraw, PointSpriteTextureCoordinates) {
+    // POINTSPRITEENABLE: t0 runs from (0, 0) at the sprite's top-left to (1, 1) at its
+    // bottom-right, so a 4-pixel sprite over the whole target shows a 2x2 texture's quadrants
+    // (POINT filtered): red, green / blue, white; the vertex has no texture coordinates.
+    Words w;
+    w.f({2, 2, 0.5f, 1, 4}).color(0xFFFFFFFFu);
+    const Outcome o = replay_text(
+        "CreateTexture tex 2 2 1 A8R8G8B8\n"
+        "LockRect tex 0 u8[ 0 0 255 255  0 255 0 255  255 0 0 255  255 255 255 255 ]\nSetTexture 0 tex\n"
+        "SetSamplerState 0 MINFILTER POINT\nSetSamplerState 0 MAGFILTER POINT\n"
+        "SetRenderState POINTSPRITEENABLE TRUE\nSetTextureStageState 0 COLOROP SELECTARG1\n"
+        "SetFVF { XYZRHW PSIZE DIFFUSE }\nDrawPrimitiveUP POINTLIST 1 24 " + w.blob() + "\n");
+    expect_no_diagnostics(o.result);
+    EXPECT_EQ(pixel(o, 0, 0), 0xFFFF0000u);
+    EXPECT_EQ(pixel(o, 3, 0), 0xFF00FF00u);
+    EXPECT_EQ(pixel(o, 0, 3), 0xFF0000FFu);
+    EXPECT_EQ(pixel(o, 3, 3), 0xFFFFFFFFu);
+}
+
 // Stage 0 = OP(arg1 TFACTOR, arg2 DIFFUSE) over the whole target; the colour at pixel (0, 0).
 uint32_t stage0(const std::string& color_op, uint32_t tfactor, uint32_t diffuse, const std::string& extra = "") {
     const Outcome o = replay_text("SetRenderState TEXTUREFACTOR " + std::to_string(tfactor) +
