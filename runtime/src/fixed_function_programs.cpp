@@ -4,6 +4,7 @@
 #include "fixed_function_programs.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "sm2/runtime/device.h"
@@ -671,9 +672,16 @@ constexpr uint32_t kTaSelectMask = 0xF, kTaSpecular = 4, kTaTFactor = 3, kTaTemp
                    kTaComplement = 0x10, kTaAlphaReplicate = 0x20;
 
 // Pixel program registers.
-constexpr unsigned kRCurrent = 0, kRTemp = 1, kRTexture = 2, kRArgFirst = 3, kRScratch = 6, kRScratch2 = 7;
+constexpr unsigned kRCurrent = 0, kRTemp = 1, kRTexture = 2, kRArgFirst = 3, kRScratch = 6, kRScratch2 = 7,
+                   kRBumpCoordinate = 8, kRBumpLuminance = 9;
 constexpr unsigned kPcTFactor = 0, kPcOne = 1, kPcMinusHalf = 2, kPcFour = 3, kPcStageConstant0 = 4,
-                   kPcZero = kPcStageConstant0 + kMaxTextureStages;
+                   kPcZero = kPcStageConstant0 + kMaxTextureStages,
+                   // Per stage, BUMPENVMAT's rows with the luminance parameters beside them (two
+                   // constants: ps_2_0 swizzles cannot pick .zw out of one): (M00, M01, LSCALE, 0),
+                   // (M10, M11, LOFFSET, 0).
+                   kPcBumpRow0 = kPcZero + 1, kPcBumpRow1 = kPcBumpRow0 + kMaxTextureStages;
+
+bool is_bump(uint32_t op) { return op == kBumpEnvMap || op == kBumpEnvMapLuminance; }
 
 bool op_reads_texture(uint32_t op, std::array<uint32_t, 3> args) {
     if (op == kBlendTextureAlpha || op == kBlendTextureAlphaPm) return true;
@@ -687,9 +695,9 @@ bool op_reads_texture(uint32_t op, std::array<uint32_t, 3> args) {
 std::optional<std::string> check_op(unsigned stage, const char* which, uint32_t op) {
     const std::string where = "texture stage " + std::to_string(stage) + " " + which + " ";
     if (op < kDisable || op > kLerp) return where + std::to_string(op) + " is not a D3DTEXTUREOP";
-    if (op == kPremodulate || op == kBumpEnvMap || op == kBumpEnvMapLuminance)
-        return where + (op == kPremodulate ? "PREMODULATE" : op == kBumpEnvMap ? "BUMPENVMAP" : "BUMPENVMAPLUMINANCE") +
-               " is not emulated yet";
+    if (op == kPremodulate) return where + "PREMODULATE is not emulated yet";
+    if (is_bump(op) && std::string(which) == "ALPHAOP")
+        return where + "BUMPENVMAP/BUMPENVMAPLUMINANCE is a colour operation only";
     return std::nullopt;
 }
 std::optional<std::string> check_arg(unsigned stage, uint32_t arg) {
@@ -718,6 +726,9 @@ FixedFunctionProgram fixed_function_pixel_program(const FixedFunctionState& ff, 
             if (auto e = check_arg(s, st[type])) return refused(*e);
         if (st[kTssResultArg] != kTaCurrent && st[kTssResultArg] != kTaTemp)
             return refused("texture stage " + std::to_string(s) + ": RESULTARG must be CURRENT or TEMP");
+        if (s > 0 && is_bump(ff.stages[s - 1][kTssColorOp]) && (st[kTssTextureTransformFlags] & kTtffProjected) != 0)
+            return refused("texture stage " + std::to_string(s) +
+                           ": a projected lookup perturbed by BUMPENVMAP is not emulated");
     }
 
     ProgramBuilder b(isa::ShaderType::Pixel);
@@ -727,7 +738,7 @@ FixedFunctionProgram fixed_function_pixel_program(const FixedFunctionState& ff, 
     for (unsigned s = 0; s < stage_count; ++s) {
         const auto& st = ff.stages[s];
         samples[s] = textures[s] &&
-                     (op_reads_texture(st[kTssColorOp], {st[kTssColorArg0], st[kTssColorArg1], st[kTssColorArg2]}) ||
+                     (is_bump(st[kTssColorOp]) || op_reads_texture(st[kTssColorOp], {st[kTssColorArg0], st[kTssColorArg1], st[kTssColorArg2]}) ||
                       (st[kTssAlphaOp] != kDisable &&
                        op_reads_texture(st[kTssAlphaOp], {st[kTssAlphaArg0], st[kTssAlphaArg1], st[kTssAlphaArg2]})));
         if (samples[s]) {
@@ -736,12 +747,18 @@ FixedFunctionProgram fixed_function_pixel_program(const FixedFunctionState& ff, 
         }
     }
 
-    std::vector<std::array<float, 4>> constants(kPcZero + 1, std::array<float, 4>{0, 0, 0, 0});
+    std::vector<std::array<float, 4>> constants(kPcBumpRow1 + kMaxTextureStages, std::array<float, 4>{0, 0, 0, 0});
     constants[kPcTFactor] = color_of(rs.texture_factor);
     constants[kPcOne] = {1, 1, 1, 1};
     constants[kPcMinusHalf] = {-0.5f, -0.5f, -0.5f, -0.5f};
     constants[kPcFour] = {4, 4, 4, 4};
-    for (unsigned s = 0; s < kMaxTextureStages; ++s) constants[kPcStageConstant0 + s] = color_of(ff.stages[s][kTssConstant]);
+    for (unsigned s = 0; s < kMaxTextureStages; ++s) {
+        const auto& st = ff.stages[s];
+        constants[kPcStageConstant0 + s] = color_of(st[kTssConstant]);
+        const auto f = [&](uint32_t type) { return std::bit_cast<float>(st[type]); };
+        constants[kPcBumpRow0 + s] = {f(kTssBumpEnvMat00), f(kTssBumpEnvMat01), f(kTssBumpEnvLScale), 0};
+        constants[kPcBumpRow1 + s] = {f(kTssBumpEnvMat10), f(kTssBumpEnvMat11), f(kTssBumpEnvLOffset), 0};
+    }
 
     // CURRENT starts as the diffuse colour (stage 0's CURRENT is DIFFUSE), TEMP as 0.
     b.op(Opcode::Mov, rd(kRCurrent), {diffuse});
@@ -751,7 +768,23 @@ FixedFunctionProgram fixed_function_pixel_program(const FixedFunctionState& ff, 
         const auto& st = ff.stages[s];
         // A stage without a texture reads TEXTURE as opaque white: D3D9's default stage 0
         // (MODULATE TEXTURE, CURRENT) draws an untextured primitive in its diffuse colour.
-        if (samples[s]) {
+        const uint32_t previous_op = s > 0 ? ff.stages[s - 1][kTssColorOp] : kDisable;
+        if (samples[s] && is_bump(previous_op)) {
+            // After a BUMPENVMAP stage (D3D9 "Bump Mapping Formulas"; ps_1_x's texbem/texbeml):
+            // (u, v) + (M00 du + M10 dv, M01 du + M11 dv), du dv = that stage's texture .rg (still
+            // in the texture register), a dependent read; with LUMINANCE the result times
+            // saturate(its .b LSCALE + LOFFSET).
+            const unsigned row0 = kPcBumpRow0 + s - 1, row1 = kPcBumpRow1 + s - 1;
+            constexpr uint8_t kSwizzleXXXX = 0x00, kSwizzleYYYY = 0x55, kSwizzleZZZZ = 0xAA;
+            b.op(Opcode::Mov, rd(kRBumpCoordinate), {src(RegisterType::Texture, s)});
+            b.op(Opcode::Mad, rd(kRBumpCoordinate, kXY), {r(kRTexture, kSwizzleXXXX), c(row0), r(kRBumpCoordinate)});
+            b.op(Opcode::Mad, rd(kRBumpCoordinate, kXY), {r(kRTexture, kSwizzleYYYY), c(row1), r(kRBumpCoordinate)});
+            if (previous_op == kBumpEnvMapLuminance)
+                b.op(Opcode::Mad, dst(RegisterType::Temp, kRBumpLuminance, isa::kMaskAll, true),
+                     {r(kRTexture, kSwizzleZZZZ), c(row0, kSwizzleZZZZ), c(row1, kSwizzleZZZZ)});
+            b.op(Opcode::Tex, rd(kRTexture), {r(kRBumpCoordinate), src(RegisterType::Sampler, s)});
+            if (previous_op == kBumpEnvMapLuminance) b.op(Opcode::Mul, rd(kRTexture), {r(kRTexture), r(kRBumpLuminance)});
+        } else if (samples[s]) {
             // D3DTTFF_PROJECTED: the vertex program put the divisor in w; texldp divides by it.
             const bool projected = (st[kTssTextureTransformFlags] & kTtffProjected) != 0;
             b.op(Opcode::Tex, rd(kRTexture), {src(RegisterType::Texture, s), src(RegisterType::Sampler, s)},
@@ -851,7 +884,9 @@ FixedFunctionProgram fixed_function_pixel_program(const FixedFunctionState& ff, 
             }
         };
         const uint32_t color_op = st[kTssColorOp], alpha_op = st[kTssAlphaOp];
-        emit(color_op, {st[kTssColorArg0], st[kTssColorArg1], st[kTssColorArg2]}, kXYZ, false);
+        // A BUMPENVMAP stage's colour operation only perturbs the next stage's lookup: CURRENT's
+        // colour stays (its alpha operation runs as any other).
+        if (!is_bump(color_op)) emit(color_op, {st[kTssColorArg0], st[kTssColorArg1], st[kTssColorArg2]}, kXYZ, false);
         // DOTPRODUCT3 as the colour operation sets alpha too (D3D9: "the result is replicated
         // to all four channels"); a disabled alpha operation keeps the previous alpha.
         if (color_op != kDotProduct3 && alpha_op != kDisable)

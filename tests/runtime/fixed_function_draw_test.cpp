@@ -535,6 +535,35 @@ TEST(FixedFunctionDraw, PointSpriteTextureCoordinates) {
     EXPECT_EQ(pixel(o, 3, 3), 0xFFFFFFFFu);
 }
 
+TEST(FixedFunctionDraw, BumpEnvironmentMapPerturbsTheNextStage) {
+    // Stage 0 BUMPENVMAP with a 1x1 A8R8G8B8 "du dv" texture: R = 128 (du = 0.50196), G = 64
+    // (dv = 0.25098), B = 128 (luminance 0.50196); stage 1 SELECTARG1 TEXTURE on the 4x1 stripes
+    // (red, green, blue, white) at u = 0.1 from TEX2's second set. BUMPENVMAT00 = 0.5, BUMPENVMAT10
+    // = 1 (M01 = M11 = 0): u' = 0.1 + 0.5 du + 1 dv = 0.1 + 0.25098 + 0.25098 = 0.60196 -> blue
+    // (without dv, 0.35: green; no bump: red). BUMPENVMAPLUMINANCE, LSCALE 1, LOFFSET 0: blue times
+    // 0.50196 -> 128 (0x80); alpha keeps stage 0's (SELECTARG1 TEXTURE, 0xFF).
+    Words w;
+    for (auto [x, y] : {std::pair{-0.5f, -0.5f}, {3.5f, -0.5f}, {-0.5f, 3.5f}, {3.5f, 3.5f}})
+        w.f({x, y, 0.5f, 1.0f, 0.5f, 0.5f, 0.1f, 0.5f});
+    const auto bumped = [&](const char* op) {
+        const Outcome o = replay_text(
+            "CreateTexture dudv 1 1 1 A8R8G8B8\nLockRect dudv 0 u8[ 128 64 128 255 ]\nSetTexture 0 dudv\n"
+            "CreateTexture stripes 4 1 1 A8R8G8B8\n"
+            "LockRect stripes 0 u8[ 0 0 255 255  0 255 0 255  255 0 0 255  255 255 255 255 ]\nSetTexture 1 stripes\n"
+            "SetSamplerState 1 MINFILTER POINT\nSetSamplerState 1 MAGFILTER POINT\n"
+            "SetTextureStageState 0 COLOROP " + std::string(op) + "\n"
+            "SetTextureStageState 0 BUMPENVMAT00 0.5\nSetTextureStageState 0 BUMPENVMAT10 1\n"
+            "SetTextureStageState 0 BUMPENVLSCALE 1\nSetTextureStageState 0 BUMPENVLOFFSET 0\n"
+            "SetTextureStageState 1 COLOROP SELECTARG1\n"
+            "SetFVF { XYZRHW TEX2 }\nDrawPrimitiveUP TRIANGLESTRIP 2 32 " + w.blob() + "\n");
+        expect_no_diagnostics(o.result);
+        return pixel(o, 1, 2);
+    };
+    EXPECT_EQ(bumped("BUMPENVMAP"), 0xFF0000FFu);
+    EXPECT_EQ(bumped("BUMPENVMAPLUMINANCE"), 0xFF000080u);
+    EXPECT_EQ(bumped("SELECTARG2"), 0xFFFF0000u);  // stage 0 not a bump stage: u = 0.1, red
+}
+
 // Stage 0 = OP(arg1 TFACTOR, arg2 DIFFUSE) over the whole target; the colour at pixel (0, 0).
 uint32_t stage0(const std::string& color_op, uint32_t tfactor, uint32_t diffuse, const std::string& extra = "") {
     const Outcome o = replay_text("SetRenderState TEXTUREFACTOR " + std::to_string(tfactor) +
@@ -655,6 +684,7 @@ TEST(FixedFunctionDraw, BadStageValuesAreRefused) {
     };
     EXPECT_EQ(refusal(0, kTssColorOp, 99), "texture stage 0 COLOROP 99 is not a D3DTEXTUREOP");
     EXPECT_EQ(refusal(1, kTssAlphaOp, 17), "texture stage 1 ALPHAOP PREMODULATE is not emulated yet");
+    EXPECT_EQ(refusal(1, kTssAlphaOp, 22), "texture stage 1 ALPHAOP BUMPENVMAP/BUMPENVMAPLUMINANCE is a colour operation only");
     EXPECT_EQ(refusal(0, kTssColorArg1, 7), "texture stage 0: 7 is not a D3DTA argument");
     EXPECT_EQ(refusal(0, kTssResultArg, kTaTexture), "texture stage 0: RESULTARG must be CURRENT or TEMP");
     // The default state builds.
