@@ -335,6 +335,16 @@ TEST(FixedFunctionDraw, ProjectedTextureCoordinates) {
                                         uniform_quad("{ XYZ TEX1 }", {0.3f, 0.0f}));
     expect_no_diagnostics(from_2d.result);
     EXPECT_EQ(pixel(from_2d, 1, 2), kTexel0);
+    // XYZRHW vertices are not transformed, but PROJECTED still divides by the set's last
+    // component: (0.3, 0, 0.5) -> 0.6, blue.
+    Words rhw;
+    for (auto [x, y] : {std::pair{-0.5f, -0.5f}, {3.5f, -0.5f}, {-0.5f, 3.5f}, {3.5f, 3.5f}})
+        rhw.f({x, y, 0.5f, 1.0f, 0.3f, 0.0f, 0.5f});
+    const Outcome pretransformed = replay_text(kFourTexels + "SetTextureStageState 0 TEXTURETRANSFORMFLAGS { COUNT3 PROJECTED }\n"
+                                               "SetFVF { XYZRHW TEX1 TEXCOORDSIZE3_0 }\nDrawPrimitiveUP TRIANGLESTRIP 2 28 " +
+                                               rhw.blob() + "\n");
+    expect_no_diagnostics(pretransformed.result);
+    EXPECT_EQ(pixel(pretransformed, 2, 1), kTexel2);
 }
 
 TEST(FixedFunctionDraw, TransformedGeneratedCoordinates) {
