@@ -664,6 +664,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
         states.ambient_source = state(147, 0);
         states.emissive_source = state(148, 0);
         states.vertex_blend = state(151, 0);
+        states.indexed_vertex_blend = state(167, 0) != 0;
         auto generated = fixed_function_vertex_program(fixed_function_, render_state_, states, viewport_,
                                                        declaration_->elements);
         if (!generated.program) return CallResult::fail(generated.error);

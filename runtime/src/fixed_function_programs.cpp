@@ -4,7 +4,10 @@
 #include "fixed_function_programs.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+
+#include "sm2/runtime/device.h"
 
 namespace sm2::runtime {
 
@@ -15,6 +18,8 @@ using isa::RegisterType;
 using isa::SourceModifier;
 
 constexpr uint8_t kXYZ = 0x7, kW = 0x8, kXY = 0x3, kZ = 0x4;
+// D3DTEXTURETRANSFORMFLAGS: COUNT1..COUNT4 in the low byte, PROJECTED.
+constexpr uint32_t kTtffCountMask = 0xFF, kTtffProjected = 0x100;
 constexpr uint8_t kSwizzleW = 0xFF, kSwizzleZWZW = 0xEE;
 
 isa::SourceParameter src(RegisterType type, unsigned index, uint8_t swizzle = isa::kSwizzleIdentity,
@@ -107,10 +112,11 @@ std::array<float, 4> color_of(uint32_t argb) {
 }
 
 // D3DDECLUSAGE values of the elements the vertex program reads.
-constexpr uint8_t kUsagePosition = 0, kUsageNormal = 3, kUsageTexCoord = 5, kUsagePositionT = 9, kUsageColor = 10;
+constexpr uint8_t kUsagePosition = 0, kUsageBlendWeight = 1, kUsageBlendIndices = 2, kUsageNormal = 3, kUsagePSize = 4, kUsageTexCoord = 5, kUsagePositionT = 9, kUsageColor = 10;
 
 // Vertex program input registers.
-constexpr unsigned kInPosition = 0, kInDiffuse = 1, kInSpecular = 2, kInTexCoord0 = 3, kInNormal = 11;
+constexpr unsigned kInPosition = 0, kInDiffuse = 1, kInSpecular = 2, kInTexCoord0 = 3, kInNormal = 11,
+                   kInBlendWeight = 12, kInBlendIndices = 13, kInPointSize = 14;
 // Vertex program constants.
 constexpr unsigned kVcTransform = 0;       // c0..c3: (world x view x projection) transposed, or
                                            // c0: the XYZRHW screen -> clip mapping
@@ -123,13 +129,23 @@ constexpr unsigned kVcGlobalAmbient = 14;  // AMBIENT
 constexpr unsigned kVcMaterial = 15;       // c15..c18: material diffuse, ambient, specular, emissive
 constexpr unsigned kVcPower = 19;          // (power, 0, 0, 0)
 constexpr unsigned kVcFog = 20;            // (FOGEND, 1 / (FOGEND - FOGSTART), FOGDENSITY, log2 e)
-constexpr unsigned kVcLightFirst = 21;     // kLightConstants per enabled light:
+constexpr unsigned kVcHalf = 21;           // (0.5, 0.5, 0.5, 0.5): sphere map scale and offset
+constexpr unsigned kVcBlendIndexScale = 22;  // indexed blending: vertex index -> palette offset
+constexpr unsigned kVcPointScale = 23;     // (POINTSCALE_A, _B, _C, viewport height)
+constexpr unsigned kVcPointSize = 24;      // (POINTSIZE, 0, 0, 0)
+constexpr unsigned kVcLightFirst = 25;     // kLightConstants per enabled light:
 constexpr unsigned kLightDiffuse = 0, kLightSpecular = 1, kLightAmbient = 2,
                    kLightVector = 3,       // directional: direction to the light; point: position (camera space)
                    kLightAttenuation = 4,  // (attenuation0, 1, 2, range)
                    kLightSpotAxis = 5,     // spot: the reversed direction (camera space, normalized)
                    kLightSpotCone = 6,     // spot: (cos(theta/2), cos(phi/2), 1 / (cos(theta/2) - cos(phi/2)), falloff)
                    kLightConstants = 7;
+// Indexed vertex blending's matrix palette, after the most the constants above can take (8 lights,
+// 8 texture matrices): per WORLDMATRIX(n), world x view's columns, then with normals the rows of
+// its 3x3's inverse.
+constexpr unsigned kVcTextureMatrixFirst = kVcLightFirst + kLightConstants * kMaxActiveLights;  // 4 per stage
+constexpr unsigned kVcPalette = kVcTextureMatrixFirst + 4 * kMaxTextureStages;
+constexpr unsigned kBlendMatrixConstants = 4, kBlendNormalConstants = 3;
 
 std::array<float, 4> rgba(const ColorValue& c) { return {c.r, c.g, c.b, c.a}; }
 
@@ -158,6 +174,44 @@ std::array<float, 9> inverse3(const std::array<float, 9>& m) {
             static_cast<float>((a * e - b * d) * k)};
 }
 
+// A row-major matrix's columns: what m4x4 (dot products with c0..c3) needs for row vectors.
+std::array<std::array<float, 4>, 4> columns_of(const Matrix4& m) {
+    std::array<std::array<float, 4>, 4> columns{};
+    for (unsigned row = 0; row < 4; ++row)
+        for (unsigned col = 0; col < 4; ++col) columns[col][row] = m[row * 4 + col];
+    return columns;
+}
+
+// The 3 rows m3x3 needs to take a normal through the inverse transpose of a matrix's 3x3.
+std::array<std::array<float, 4>, 3> normal_rows(const Matrix4& m) {
+    const auto inv = inverse3({m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10]});
+    std::array<std::array<float, 4>, 3> rows{};
+    for (unsigned j = 0; j < 3; ++j) rows[j] = {inv[j * 3], inv[j * 3 + 1], inv[j * 3 + 2], 0};
+    return rows;
+}
+
+// The number of components a vertex element supplies (the rest are fetched as (0, 0, 0, 1)).
+unsigned decl_type_components(uint8_t type) {
+    switch (static_cast<DeclType>(type)) {
+    case DeclType::FLOAT1: return 1;
+    case DeclType::FLOAT2: case DeclType::SHORT2: case DeclType::SHORT2N: case DeclType::USHORT2N:
+    case DeclType::FLOAT16_2: return 2;
+    case DeclType::FLOAT3: case DeclType::UDEC3: case DeclType::DEC3N: return 3;
+    default: return 4;
+    }
+}
+
+// A stage's texture matrix for an input of `components` components, as the 4 columns m4x4
+// reads. D3D9 extends a 1- or 2-component coordinate with a 1 right after it, (u, 1, 0, 0) or
+// (u, v, 1, 0), so that a 2D coordinate's translation is the matrix's third row; the fetch gives
+// (u, 0, 0, 1) and (u, v, 0, 1), so that row moves to the fourth, which the 1 multiplies.
+std::array<std::array<float, 4>, 4> texture_matrix_columns(const Matrix4& m, unsigned components) {
+    Matrix4 adjusted = m;
+    if (components <= 2)
+        for (unsigned col = 0; col < 4; ++col) adjusted[12 + col] = m[components * 4 + col];
+    return columns_of(adjusted);
+}
+
 }  // namespace
 
 FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff, const RenderState& rs,
@@ -165,20 +219,41 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
                                                    std::span<const VertexElement> declaration) {
     bool has_position = false, pretransformed = false, has_diffuse = false, has_specular = false, has_normal = false;
     std::array<bool, 8> has_texcoord{};
+    std::array<unsigned, 8> texcoord_components{};
+    unsigned blend_weights = 0;  // components of BLENDWEIGHT 0
+    bool has_point_size = false;
+    std::optional<DeclType> blend_indices;
     for (const auto& e : declaration) {
+        if (e.usage == kUsageBlendWeight && e.usage_index == 0) blend_weights = decl_type_components(e.type);
+        if (e.usage == kUsagePSize && e.usage_index == 0) has_point_size = true;
+        if (e.usage == kUsageBlendIndices && e.usage_index == 0) blend_indices = static_cast<DeclType>(e.type);
         if (e.usage == kUsagePosition && e.usage_index == 0) has_position = true;
         if (e.usage == kUsagePositionT && e.usage_index == 0) has_position = pretransformed = true;
         if (e.usage == kUsageNormal && e.usage_index == 0) has_normal = true;
         if (e.usage == kUsageColor && e.usage_index == 0) has_diffuse = true;
         if (e.usage == kUsageColor && e.usage_index == 1) has_specular = true;
-        if (e.usage == kUsageTexCoord && e.usage_index < 8) has_texcoord[e.usage_index] = true;
+        if (e.usage == kUsageTexCoord && e.usage_index < 8) {
+            has_texcoord[e.usage_index] = true;
+            texcoord_components[e.usage_index] = decl_type_components(e.type);
+        }
     }
     if (!has_position) return refused("fixed-function vertex processing: the declaration has no POSITION or POSITIONT 0");
     const bool lighting = states.lighting && !pretransformed;
-    if (!pretransformed && states.vertex_blend != 0) return refused("fixed-function vertex blending is not emulated");
+    // D3DVBF_*: DISABLE 0, 1WEIGHTS..3WEIGHTS, TWEENING 255, 0WEIGHTS 256. n weights blend n + 1
+    // matrices, the last weighted 1 - (the sum of the others).
+    constexpr uint32_t kVbfTweening = 255, kVbf0Weights = 256;
+    if (states.vertex_blend == kVbfTweening) return refused("VERTEXBLEND TWEENING is not emulated");
+    if (states.vertex_blend > 3 && states.vertex_blend != kVbf0Weights)
+        return refused("VERTEXBLEND " + std::to_string(states.vertex_blend) + " is not a D3DVERTEXBLENDFLAGS value");
+    const unsigned weights = states.vertex_blend == kVbf0Weights ? 0 : states.vertex_blend;
+    const bool indexed_blend = !pretransformed && states.indexed_vertex_blend;
+    const bool blending = !pretransformed && (weights > 0 || indexed_blend);
+    if (blending && weights > blend_weights)
+        return refused("VERTEXBLEND " + std::to_string(weights) + " weights: the vertex has " +
+                       std::to_string(blend_weights));
+    if (indexed_blend && !blend_indices) return refused("INDEXEDVERTEXBLENDENABLE: the vertex has no BLENDINDICES");
     const bool vertex_fog =
         rs.fog_enable && rs.fog_table_mode == FogMode::None && !pretransformed && rs.fog_vertex_mode != FogMode::None;
-    if (vertex_fog && rs.range_fog_enable) return refused("fixed-function range fog (RANGEFOGENABLE) is not emulated yet");
     std::vector<const Light*> lights;
     if (lighting)
         for (uint32_t index : ff.enabled_lights) {
@@ -189,29 +264,30 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
             return refused("fixed-function lighting: material source " + std::to_string(source) +
                            " is not MATERIAL, COLOR1 or COLOR2");
     // D3DTSS_TCI_* texture coordinate generation: PASSTHRU 0, CAMERASPACENORMAL 1,
-    // CAMERASPACEPOSITION 2, CAMERASPACEREFLECTIONVECTOR 3 (SPHEREMAP 4 is refused).
+    // CAMERASPACEPOSITION 2, CAMERASPACEREFLECTIONVECTOR 3, SPHEREMAP 4.
     constexpr uint32_t kTciPassThru = 0, kTciNormal = 1, kTciPosition = 2, kTciReflection = 3, kTciSphereMap = 4;
     bool generates_from_normal = false, generates_from_position = false;
     for (unsigned s = 0; s < kMaxTextureStages; ++s) {
         const uint32_t tci = ff.stages[s][kTssTexCoordIndex];
         const uint32_t mode = tci >> 16;
-        if (mode == kTciSphereMap)
-            return refused("texture stage " + std::to_string(s) +
-                           ": TEXCOORDINDEX SPHEREMAP texture coordinate generation is not emulated yet");
         if (mode > kTciSphereMap)
             return refused("texture stage " + std::to_string(s) + ": TEXCOORDINDEX mode " + std::to_string(mode) +
                            " is not a D3DTSS_TCI mode");
         if (mode != kTciPassThru && pretransformed)
             return refused("texture stage " + std::to_string(s) +
                            ": TEXCOORDINDEX texture coordinate generation needs untransformed (XYZ) vertices");
-        generates_from_normal |= mode == kTciNormal || mode == kTciReflection;
-        generates_from_position |= mode == kTciPosition || mode == kTciReflection;
+        generates_from_normal |= mode == kTciNormal || mode == kTciReflection || mode == kTciSphereMap;
+        generates_from_position |= mode == kTciPosition || mode == kTciReflection || mode == kTciSphereMap;
         if ((tci & 0xFFFF) >= 8)
             return refused("texture stage " + std::to_string(s) + ": TEXCOORDINDEX " + std::to_string(tci & 0xFFFF) +
                            " is not a texture coordinate set (0..7)");
-        if (ff.stages[s][kTssTextureTransformFlags] != 0 && !pretransformed)
+        const uint32_t flags = ff.stages[s][kTssTextureTransformFlags];
+        if ((flags & ~(kTtffCountMask | kTtffProjected)) != 0 || (flags & kTtffCountMask) > 4)
+            return refused("texture stage " + std::to_string(s) + ": TEXTURETRANSFORMFLAGS " + std::to_string(flags) +
+                           " is not COUNT1..COUNT4 with or without PROJECTED");
+        if (flags == (1 | kTtffProjected))
             return refused("texture stage " + std::to_string(s) +
-                           ": TEXTURETRANSFORMFLAGS (texture transforms, projection) are not emulated yet");
+                           ": TEXTURETRANSFORMFLAGS COUNT1 PROJECTED (a projection needs 2 to 4 components)");
     }
 
     ProgramBuilder b(isa::ShaderType::Vertex);
@@ -228,8 +304,12 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
             b.dcl_input(RegisterType::Input, kInTexCoord0 + t, isa::DeclUsage::TexCoord, static_cast<uint8_t>(t));
     const bool needs_normal = lighting || generates_from_normal;
     if (needs_normal && has_normal) b.dcl_input(RegisterType::Input, kInNormal, isa::DeclUsage::Normal, 0);
+    if (blending && weights > 0) b.dcl_input(RegisterType::Input, kInBlendWeight, isa::DeclUsage::BlendWeight, 0);
+    if (indexed_blend) b.dcl_input(RegisterType::Input, kInBlendIndices, isa::DeclUsage::BlendIndices, 0);
+    const bool point_scale = rs.point_scale_enable && !pretransformed;
+    if (has_point_size) b.dcl_input(RegisterType::Input, kInPointSize, isa::DeclUsage::PointSize, 0);
 
-    std::vector<std::array<float, 4>> constants(kVcLightFirst + kLightConstants * lights.size(),
+    std::vector<std::array<float, 4>> constants(blending ? kMaxVertexShaderConstantsF : kVcPalette,
                                                 std::array<float, 4>{0, 0, 0, 0});
     constants[kVcDefaultDiffuse] = {1, 1, 1, 1};
     constants[kVcOne] = {1, 1, 1, 1};
@@ -249,33 +329,98 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
         b.op(Opcode::Mov, dst(RegisterType::Temp, 1, kZ), {in(kInPosition)});
         b.op(Opcode::Mul, o_pos(kXYZ), {r(1), r(0, kSwizzleW)});
         b.op(Opcode::Mov, o_pos(kW), {r(0, kSwizzleW)});
-    } else {
+    } else if (!blending) {
         // Row vectors: p' = p (World View Projection); m4x4 takes dot products with rows c0..c3,
         // so the constants hold the product's columns.
-        const Matrix4 wvp = multiply(world_view, ff.projection);
-        for (unsigned row = 0; row < 4; ++row)
-            for (unsigned col = 0; col < 4; ++col) {
-                constants[kVcTransform + row][col] = wvp[col * 4 + row];
-                constants[kVcWorldView + row][col] = world_view[col * 4 + row];
-            }
+        const auto wvp = columns_of(multiply(world_view, ff.projection));
+        const auto wv = columns_of(world_view);
+        std::copy(wvp.begin(), wvp.end(), constants.begin() + kVcTransform);
+        std::copy(wv.begin(), wv.end(), constants.begin() + kVcWorldView);
         b.op(Opcode::M4x4, o_pos(isa::kMaskAll), {in(kInPosition), c(kVcTransform)});
-    }
-    // Camera-space position in r0 (lighting and fog read it).
-    if (lighting || vertex_fog || generates_from_position) b.op(Opcode::M4x4, rd(0), {in(kInPosition), c(kVcWorldView)});
-    // Camera-space normal in r1 (lighting and texgen read it): through the inverse transpose of
-    // world x view's 3x3, normalized with NORMALIZENORMALS; (0, 0, 0) when the vertex has none.
-    if (needs_normal) {
-        const std::array<float, 9> wv3{world_view[0], world_view[1], world_view[2], world_view[4], world_view[5],
-                                       world_view[6], world_view[8], world_view[9], world_view[10]};
-        const auto inv = inverse3(wv3);
-        for (unsigned j = 0; j < 3; ++j) constants[kVcNormal + j] = {inv[j * 3], inv[j * 3 + 1], inv[j * 3 + 2], 0};
-        if (has_normal) {
-            // nrm may not write its own source: the transformed normal goes through r11.
-            b.op(Opcode::M3x3, rd(states.normalize_normals ? 11 : 1, kXYZ), {in(kInNormal), c(kVcNormal)});
-            if (states.normalize_normals) b.op(Opcode::Nrm, rd(1, kXYZ), {r(11)});
-        } else {
-            b.op(Opcode::Mov, rd(1), {c(kVcZero)});
+        // Camera-space position in r0 (lighting, fog and point scale read it).
+        if (lighting || vertex_fog || generates_from_position || point_scale)
+            b.op(Opcode::M4x4, rd(0), {in(kInPosition), c(kVcWorldView)});
+        // Camera-space normal in r1 (lighting and texgen read it): through the inverse transpose of
+        // world x view's 3x3, normalized with NORMALIZENORMALS; (0, 0, 0) when the vertex has none.
+        if (needs_normal) {
+            const auto rows = normal_rows(world_view);
+            std::copy(rows.begin(), rows.end(), constants.begin() + kVcNormal);
+            if (has_normal) {
+                // nrm may not write its own source: the transformed normal goes through r11.
+                b.op(Opcode::M3x3, rd(states.normalize_normals ? 11 : 1, kXYZ), {in(kInNormal), c(kVcNormal)});
+                if (states.normalize_normals) b.op(Opcode::Nrm, rd(1, kXYZ), {r(11)});
+            } else {
+                b.op(Opcode::Mov, rd(1), {c(kVcZero)});
+            }
         }
+    } else {
+        // Vertex blending (D3D9 "Geometry Blending", "Indexed Vertex Blending"): the camera-space
+        // position sum_i w_i p (World_i View), with w_n = 1 - (w_0 + ... + w_n-1), and the normal
+        // sum_i w_i n (World_i View)^-T (normalized with NORMALIZENORMALS); World_i is WORLDMATRIX(i),
+        // or with INDEXEDVERTEXBLENDENABLE WORLDMATRIX(the vertex's i-th index), read from the
+        // palette by relative addressing. Then oPos = P Projection.
+        const bool blend_normals = needs_normal && has_normal;
+        const unsigned stride = kBlendMatrixConstants + (blend_normals ? kBlendNormalConstants : 0);
+        const auto store_matrix = [&](unsigned base, const Matrix4& world) {
+            const Matrix4 wv = multiply(world, ff.view);
+            const auto columns = columns_of(wv);
+            std::copy(columns.begin(), columns.end(), constants.begin() + base);
+            if (blend_normals) {
+                const auto rows = normal_rows(wv);
+                std::copy(rows.begin(), rows.end(), constants.begin() + base + kBlendMatrixConstants);
+            }
+        };
+        const auto projection = columns_of(ff.projection);
+        std::copy(projection.begin(), projection.end(), constants.begin() + kVcTransform);
+        const unsigned matrices = weights + 1;
+        if (indexed_blend) {
+            // The palette holds as many matrices as the constants left take (non-indexed blending
+            // puts its at most 4 matrices at the same place); an index past it
+            // reads zero (relative reads outside the constant file), as docs/fixed-function.md says.
+            const unsigned palette = (kMaxVertexShaderConstantsF - kVcPalette) / stride;
+            for (unsigned m = 0; m < palette; ++m) store_matrix(kVcPalette + m * stride, ff.world[m]);
+            // D3DCOLOR indices are fetched as (R, G, B, A) / 255, i.e. bytes 2, 1, 0, 3: .zyxw puts
+            // them back in memory order, as UBYTE4 has them.
+            const float scale = static_cast<float>(stride) * (*blend_indices == DeclType::D3DCOLOR ? 255.0f : 1.0f);
+            constants[kVcBlendIndexScale] = {scale, scale, scale, scale};
+            constexpr uint8_t kSwizzleZYXW = 0xC6;
+            const auto indices = *blend_indices == DeclType::D3DCOLOR ? in(kInBlendIndices, kSwizzleZYXW) : in(kInBlendIndices);
+            b.op(Opcode::Mul, rd(6), {indices, c(kVcBlendIndexScale)});
+        } else {
+            for (unsigned m = 0; m < matrices; ++m) store_matrix(kVcPalette + m * stride, ff.world[m]);
+        }
+        // r7.x: the last matrix's weight.
+        b.op(Opcode::Mov, rd(7, kX), {c(kVcOne)});
+        for (unsigned i = 0; i < weights; ++i)
+            b.op(Opcode::Add, rd(7, kX), {r(7, kSwizzleX), negated(in(kInBlendWeight, isa::replicate_swizzle(static_cast<uint8_t>(i))))});
+        b.op(Opcode::Mov, rd(0), {c(kVcZero)});
+        if (needs_normal) b.op(Opcode::Mov, rd(1), {c(kVcZero)});
+        if (blend_normals && states.normalize_normals) b.op(Opcode::Mov, rd(11), {c(kVcZero)});
+        for (unsigned i = 0; i < matrices; ++i) {
+            const auto weight = i < weights ? in(kInBlendWeight, isa::replicate_swizzle(static_cast<uint8_t>(i))) : r(7, kSwizzleX);
+            const auto row = [&](unsigned k) {
+                if (!indexed_blend) return c(kVcPalette + i * stride + k);
+                isa::SourceParameter p = c(kVcPalette + k);
+                p.relative = isa::RelativeAddress{RegisterType::Address, 0x00};
+                return p;
+            };
+            if (indexed_blend)
+                b.op(Opcode::Mova, dst(RegisterType::Address, 0, kX), {r(6, isa::replicate_swizzle(static_cast<uint8_t>(i)))});
+            for (unsigned k = 0; k < 4; ++k)
+                b.op(Opcode::Dp4, rd(8, static_cast<uint8_t>(1u << k)), {in(kInPosition), row(k)});
+            b.op(Opcode::Mad, rd(0), {r(8), weight, r(0)});
+            if (blend_normals) {
+                for (unsigned k = 0; k < 3; ++k)
+                    b.op(Opcode::Dp3, rd(9, static_cast<uint8_t>(1u << k)), {in(kInNormal), row(kBlendMatrixConstants + k)});
+                b.op(Opcode::Mad, rd(states.normalize_normals ? 11 : 1, kXYZ),
+                     {r(9), weight, r(states.normalize_normals ? 11 : 1)});
+            }
+        }
+        if (blend_normals && states.normalize_normals) {
+            // Accumulated in r11 (nrm may not write its own source).
+            b.op(Opcode::Nrm, rd(1, kXYZ), {r(11)});
+        }
+        b.op(Opcode::M4x4, o_pos(isa::kMaskAll), {r(0), c(kVcTransform)});
     }
 
     if (lighting) {
@@ -390,42 +535,91 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
         b.op(Opcode::Mov, dst(RegisterType::AttrOut, 0), {has_diffuse ? in(kInDiffuse) : c(kVcDefaultDiffuse)});
         b.op(Opcode::Mov, dst(RegisterType::AttrOut, 1), {has_specular ? in(kInSpecular) : c(kVcZero)});
     }
+    constants[kVcHalf] = {0.5f, 0.5f, 0.5f, 0.5f};
     for (unsigned s = 0; s < kMaxTextureStages; ++s) {
         const uint32_t set = ff.stages[s][kTssTexCoordIndex] & 0xFFFF, mode = ff.stages[s][kTssTexCoordIndex] >> 16;
+        const uint32_t flags = ff.stages[s][kTssTextureTransformFlags];
+        const unsigned count = flags & kTtffCountMask;
         const auto o_t = [&](uint8_t mask) { return dst(RegisterType::TexCrdOut, s, mask); };
-        if (mode == kTciPassThru) {
-            if (has_texcoord[set]) b.op(Opcode::Mov, o_t(isa::kMaskAll), {in(kInTexCoord0 + set)});
-            continue;
-        }
-        // Generated: (x, y, z, 1) of the camera-space normal, position, or the reflection of the
-        // view direction I about N, R = I - 2 (N.I) N, with I = norm(P) under LOCALVIEWER and
-        // (0, 0, 1) without (D3D9 "Texture Coordinate Processing"; as Wine).
-        if (mode == kTciNormal) b.op(Opcode::Mov, o_t(kXYZ), {r(1)});
-        if (mode == kTciPosition) b.op(Opcode::Mov, o_t(kXYZ), {r(0)});
-        if (mode == kTciReflection) {
-            if (states.local_viewer) {
-                b.op(Opcode::Nrm, rd(8, kXYZ), {r(0)});
-            } else {
-                b.op(Opcode::Mov, rd(8), {c(kVcZero)});
-                b.op(Opcode::Mov, rd(8, kZ), {c(kVcOne)});
+        if (mode == kTciPassThru && !has_texcoord[set]) continue;  // nothing to pass, transform or project
+        // The stage's input coordinate: the vertex's set, or generated into r10 as (x, y, z, 1)
+        // from the camera-space normal, position, the reflection of the view direction I about N,
+        // R = I - 2 (N.I) N, with I = norm(P) under LOCALVIEWER and (0, 0, 1) without (D3D9
+        // "Texture Coordinate Processing"; as Wine), or the sphere map coordinate of R.
+        isa::SourceParameter coordinate = in(kInTexCoord0 + set);
+        unsigned components = texcoord_components[set];
+        if (mode != kTciPassThru) {
+            coordinate = r(10);
+            components = 4;
+            if (mode == kTciNormal) b.op(Opcode::Mov, rd(10, kXYZ), {r(1)});
+            if (mode == kTciPosition) b.op(Opcode::Mov, rd(10, kXYZ), {r(0)});
+            if (mode == kTciReflection || mode == kTciSphereMap) {
+                if (states.local_viewer) {
+                    b.op(Opcode::Nrm, rd(8, kXYZ), {r(0)});
+                } else {
+                    b.op(Opcode::Mov, rd(8), {c(kVcZero)});
+                    b.op(Opcode::Mov, rd(8, kZ), {c(kVcOne)});
+                }
+                b.op(Opcode::Dp3, rd(9, kX), {r(1), r(8)});
+                b.op(Opcode::Add, rd(9, kX), {r(9, kSwizzleX), r(9, kSwizzleX)});
+                b.op(Opcode::Mad, rd(10, kXYZ), {negated(r(9, kSwizzleX)), r(1), r(8)});
             }
-            b.op(Opcode::Dp3, rd(9, kX), {r(1), r(8)});
-            b.op(Opcode::Add, rd(9, kX), {r(9, kSwizzleX), r(9, kSwizzleX)});
-            b.op(Opcode::Mad, o_t(kXYZ), {negated(r(9, kSwizzleX)), r(1), r(8)});
+            if (mode == kTciSphereMap) {
+                // OpenGL's sphere map in D3D's camera space (the eye looks along +z, v grows
+                // downwards): m = 2 |(Rx, Ry, Rz - 1)|, (u, v) = (Rx / m + 0.5, -Ry / m + 0.5), so
+                // that a surface facing the eye (R = (0, 0, -1)) reads the map's centre.
+                b.op(Opcode::Mov, rd(9, kXYZ), {r(10)});
+                b.op(Opcode::Add, rd(9, kZ), {r(10, kSwizzleZ), negated(c(kVcOne, kSwizzleZ))});
+                b.op(Opcode::Dp3, rd(9, kW), {r(9), r(9)});
+                b.op(Opcode::Rsq, rd(9, kW), {r(9, kSwizzleW)});
+                b.op(Opcode::Mul, rd(9, kW), {r(9, kSwizzleW), c(kVcHalf)});  // 1 / m
+                b.op(Opcode::Mad, rd(10, kX), {r(10, kSwizzleX), r(9, kSwizzleW), c(kVcHalf)});
+                b.op(Opcode::Mad, rd(10, kY), {negated(r(10, kSwizzleY)), r(9, kSwizzleW), c(kVcHalf)});
+                b.op(Opcode::Mov, rd(10, kZ), {c(kVcZero)});
+            }
+            b.op(Opcode::Mov, rd(10, kW), {c(kVcOne)});
         }
-        b.op(Opcode::Mov, o_t(kW), {c(kVcOne)});
+        if (count != 0 && !pretransformed) {
+            // TEXTURETRANSFORMFLAGS COUNTn: the coordinate through TEXTUREs's matrix; the
+            // rasterizer takes its first n components (the rest are zeroed).
+            const unsigned base = kVcTextureMatrixFirst + 4 * s;
+            const auto columns = texture_matrix_columns(ff.texture[s], components);
+            std::copy(columns.begin(), columns.end(), constants.begin() + base);
+            b.op(Opcode::M4x4, rd(11), {coordinate, c(base)});
+            coordinate = r(11);
+            components = count;
+            const auto beyond = static_cast<uint8_t>(isa::kMaskAll & ~((1u << count) - 1));
+            if (beyond != 0) b.op(Opcode::Mov, rd(11, beyond), {c(kVcZero)});
+        }
+        b.op(Opcode::Mov, o_t(isa::kMaskAll), {coordinate});
+        // D3DTTFF_PROJECTED: the lookup divides by the last of the coordinate's components (the
+        // COUNTn-th; for XYZRHW vertices, which are not transformed, the set's last). The
+        // pixel program divides by w (texldp), so that component goes there.
+        if ((flags & kTtffProjected) != 0 && components < 4) {
+            const uint8_t last = isa::replicate_swizzle(static_cast<uint8_t>(components - 1));
+            coordinate.swizzle = last;
+            b.op(Opcode::Mov, o_t(kW), {coordinate});
+        }
     }
     const auto o_fog = dst(RegisterType::RastOut, 1);  // oFog: a scalar, no write mask
     if (vertex_fog) {
-        // D3D9 "Vertex Fog", range fog off: the distance is camera-space z. LINEAR: (end - d) /
-        // (end - start); EXP: e^-(density d); EXP2: e^-(density d)^2.
+        // D3D9 "Vertex Fog": the distance d is camera-space z, or with RANGEFOGENABLE the
+        // distance from the eye, |P|. LINEAR: (end - d) / (end - start); EXP: e^-(density d);
+        // EXP2: e^-(density d)^2.
         constants[kVcFog] = {rs.fog_end, rs.fog_end != rs.fog_start ? 1.0f / (rs.fog_end - rs.fog_start) : 0.0f,
                              rs.fog_density, 1.4426950408889634f};
+        isa::SourceParameter distance = r(0, kSwizzleZ);
+        if (rs.range_fog_enable) {
+            b.op(Opcode::Dp3, rd(10, kY), {r(0), r(0)});
+            b.op(Opcode::Rsq, rd(10, kY), {r(10, kSwizzleY)});
+            b.op(Opcode::Rcp, rd(10, kY), {r(10, kSwizzleY)});
+            distance = r(10, kSwizzleY);
+        }
         if (rs.fog_vertex_mode == FogMode::Linear) {
-            b.op(Opcode::Add, rd(10, kX), {c(kVcFog, kSwizzleX), negated(r(0, kSwizzleZ))});
+            b.op(Opcode::Add, rd(10, kX), {c(kVcFog, kSwizzleX), negated(distance)});
             b.op(Opcode::Mul, rd(10, kX), {r(10, kSwizzleX), c(kVcFog, kSwizzleY)});
         } else {
-            b.op(Opcode::Mul, rd(10, kX), {r(0, kSwizzleZ), c(kVcFog, kSwizzleZ)});
+            b.op(Opcode::Mul, rd(10, kX), {distance, c(kVcFog, kSwizzleZ)});
             if (rs.fog_vertex_mode == FogMode::Exp2) b.op(Opcode::Mul, rd(10, kX), {r(10, kSwizzleX), r(10, kSwizzleX)});
             b.op(Opcode::Mul, rd(10, kX), {r(10, kSwizzleX), negated(c(kVcFog, kSwizzleW))});
             b.op(Opcode::Exp, rd(10, kX), {r(10, kSwizzleX)});
@@ -438,6 +632,28 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
         // FOGVERTEXMODE NONE (and XYZRHW vertices): the fog factor is the specular colour's
         // alpha (D3D9, "Vertex Fog"); with no specular in the vertex, no fog (factor 1).
         b.op(Opcode::Mov, o_fog, {has_specular ? in(kInSpecular, kSwizzleW) : c(kVcOne, kSwizzleW)});
+    }
+    if (has_point_size || point_scale) {
+        // oPts: the vertex's PSIZE, else POINTSIZE; with POINTSCALEENABLE (D3D9 "Point Sprites")
+        // times Vh sqrt(1 / (A + B De + C De^2)), De the distance from the eye. The rasterizer
+        // clamps it to POINTSIZE_MIN..POINTSIZE_MAX as for a shader's oPts.
+        constants[kVcPointSize] = {rs.point_size, 0, 0, 0};
+        const auto size = has_point_size ? in(kInPointSize, kSwizzleX) : c(kVcPointSize, kSwizzleX);
+        const auto o_pts = dst(RegisterType::RastOut, 2);  // a scalar, no write mask
+        if (point_scale) {
+            constants[kVcPointScale] = {rs.point_scale_a, rs.point_scale_b, rs.point_scale_c,
+                                        static_cast<float>(viewport.height)};
+            b.op(Opcode::Dp3, rd(8, kZ), {r(0), r(0)});                      // De^2
+            b.op(Opcode::Rsq, rd(8, kW), {r(8, kSwizzleZ)});
+            b.op(Opcode::Rcp, rd(8, kW), {r(8, kSwizzleW)});                   // De
+            b.op(Opcode::Mad, rd(8, kY), {c(kVcPointScale, kSwizzleY), r(8, kSwizzleW), c(kVcPointScale, kSwizzleX)});
+            b.op(Opcode::Mad, rd(8, kY), {c(kVcPointScale, kSwizzleZ), r(8, kSwizzleZ), r(8, kSwizzleY)});
+            b.op(Opcode::Rsq, rd(8, kY), {r(8, kSwizzleY)});
+            b.op(Opcode::Mul, rd(8, kY), {r(8, kSwizzleY), c(kVcPointScale, kSwizzleW)});
+            b.op(Opcode::Mul, o_pts, {size, r(8, kSwizzleY)});
+        } else {
+            b.op(Opcode::Mov, o_pts, {size});
+        }
     }
     return std::move(b).finish(std::move(constants));
 }
@@ -456,9 +672,16 @@ constexpr uint32_t kTaSelectMask = 0xF, kTaSpecular = 4, kTaTFactor = 3, kTaTemp
                    kTaComplement = 0x10, kTaAlphaReplicate = 0x20;
 
 // Pixel program registers.
-constexpr unsigned kRCurrent = 0, kRTemp = 1, kRTexture = 2, kRArgFirst = 3, kRScratch = 6, kRScratch2 = 7;
+constexpr unsigned kRCurrent = 0, kRTemp = 1, kRTexture = 2, kRArgFirst = 3, kRScratch = 6, kRScratch2 = 7,
+                   kRBumpCoordinate = 8, kRBumpLuminance = 9;
 constexpr unsigned kPcTFactor = 0, kPcOne = 1, kPcMinusHalf = 2, kPcFour = 3, kPcStageConstant0 = 4,
-                   kPcZero = kPcStageConstant0 + kMaxTextureStages;
+                   kPcZero = kPcStageConstant0 + kMaxTextureStages,
+                   // Per stage, BUMPENVMAT's rows with the luminance parameters beside them (two
+                   // constants: ps_2_0 swizzles cannot pick .zw out of one): (M00, M01, LSCALE, 0),
+                   // (M10, M11, LOFFSET, 0).
+                   kPcBumpRow0 = kPcZero + 1, kPcBumpRow1 = kPcBumpRow0 + kMaxTextureStages;
+
+bool is_bump(uint32_t op) { return op == kBumpEnvMap || op == kBumpEnvMapLuminance; }
 
 bool op_reads_texture(uint32_t op, std::array<uint32_t, 3> args) {
     if (op == kBlendTextureAlpha || op == kBlendTextureAlphaPm) return true;
@@ -472,9 +695,9 @@ bool op_reads_texture(uint32_t op, std::array<uint32_t, 3> args) {
 std::optional<std::string> check_op(unsigned stage, const char* which, uint32_t op) {
     const std::string where = "texture stage " + std::to_string(stage) + " " + which + " ";
     if (op < kDisable || op > kLerp) return where + std::to_string(op) + " is not a D3DTEXTUREOP";
-    if (op == kPremodulate || op == kBumpEnvMap || op == kBumpEnvMapLuminance)
-        return where + (op == kPremodulate ? "PREMODULATE" : op == kBumpEnvMap ? "BUMPENVMAP" : "BUMPENVMAPLUMINANCE") +
-               " is not emulated yet";
+    if (op == kPremodulate) return where + "PREMODULATE is not emulated yet";
+    if (is_bump(op) && std::string(which) == "ALPHAOP")
+        return where + "BUMPENVMAP/BUMPENVMAPLUMINANCE is a colour operation only";
     return std::nullopt;
 }
 std::optional<std::string> check_arg(unsigned stage, uint32_t arg) {
@@ -503,6 +726,9 @@ FixedFunctionProgram fixed_function_pixel_program(const FixedFunctionState& ff, 
             if (auto e = check_arg(s, st[type])) return refused(*e);
         if (st[kTssResultArg] != kTaCurrent && st[kTssResultArg] != kTaTemp)
             return refused("texture stage " + std::to_string(s) + ": RESULTARG must be CURRENT or TEMP");
+        if (s > 0 && is_bump(ff.stages[s - 1][kTssColorOp]) && (st[kTssTextureTransformFlags] & kTtffProjected) != 0)
+            return refused("texture stage " + std::to_string(s) +
+                           ": a projected lookup perturbed by BUMPENVMAP is not emulated");
     }
 
     ProgramBuilder b(isa::ShaderType::Pixel);
@@ -512,7 +738,7 @@ FixedFunctionProgram fixed_function_pixel_program(const FixedFunctionState& ff, 
     for (unsigned s = 0; s < stage_count; ++s) {
         const auto& st = ff.stages[s];
         samples[s] = textures[s] &&
-                     (op_reads_texture(st[kTssColorOp], {st[kTssColorArg0], st[kTssColorArg1], st[kTssColorArg2]}) ||
+                     (is_bump(st[kTssColorOp]) || op_reads_texture(st[kTssColorOp], {st[kTssColorArg0], st[kTssColorArg1], st[kTssColorArg2]}) ||
                       (st[kTssAlphaOp] != kDisable &&
                        op_reads_texture(st[kTssAlphaOp], {st[kTssAlphaArg0], st[kTssAlphaArg1], st[kTssAlphaArg2]})));
         if (samples[s]) {
@@ -521,12 +747,18 @@ FixedFunctionProgram fixed_function_pixel_program(const FixedFunctionState& ff, 
         }
     }
 
-    std::vector<std::array<float, 4>> constants(kPcZero + 1, std::array<float, 4>{0, 0, 0, 0});
+    std::vector<std::array<float, 4>> constants(kPcBumpRow1 + kMaxTextureStages, std::array<float, 4>{0, 0, 0, 0});
     constants[kPcTFactor] = color_of(rs.texture_factor);
     constants[kPcOne] = {1, 1, 1, 1};
     constants[kPcMinusHalf] = {-0.5f, -0.5f, -0.5f, -0.5f};
     constants[kPcFour] = {4, 4, 4, 4};
-    for (unsigned s = 0; s < kMaxTextureStages; ++s) constants[kPcStageConstant0 + s] = color_of(ff.stages[s][kTssConstant]);
+    for (unsigned s = 0; s < kMaxTextureStages; ++s) {
+        const auto& st = ff.stages[s];
+        constants[kPcStageConstant0 + s] = color_of(st[kTssConstant]);
+        const auto f = [&](uint32_t type) { return std::bit_cast<float>(st[type]); };
+        constants[kPcBumpRow0 + s] = {f(kTssBumpEnvMat00), f(kTssBumpEnvMat01), f(kTssBumpEnvLScale), 0};
+        constants[kPcBumpRow1 + s] = {f(kTssBumpEnvMat10), f(kTssBumpEnvMat11), f(kTssBumpEnvLOffset), 0};
+    }
 
     // CURRENT starts as the diffuse colour (stage 0's CURRENT is DIFFUSE), TEMP as 0.
     b.op(Opcode::Mov, rd(kRCurrent), {diffuse});
@@ -536,8 +768,27 @@ FixedFunctionProgram fixed_function_pixel_program(const FixedFunctionState& ff, 
         const auto& st = ff.stages[s];
         // A stage without a texture reads TEXTURE as opaque white: D3D9's default stage 0
         // (MODULATE TEXTURE, CURRENT) draws an untextured primitive in its diffuse colour.
-        if (samples[s]) {
-            b.op(Opcode::Tex, rd(kRTexture), {src(RegisterType::Texture, s), src(RegisterType::Sampler, s)});
+        const uint32_t previous_op = s > 0 ? ff.stages[s - 1][kTssColorOp] : kDisable;
+        if (samples[s] && is_bump(previous_op)) {
+            // After a BUMPENVMAP stage (D3D9 "Bump Mapping Formulas"; ps_1_x's texbem/texbeml):
+            // (u, v) + (M00 du + M10 dv, M01 du + M11 dv), du dv = that stage's texture .rg (still
+            // in the texture register), a dependent read; with LUMINANCE the result times
+            // saturate(its .b LSCALE + LOFFSET).
+            const unsigned row0 = kPcBumpRow0 + s - 1, row1 = kPcBumpRow1 + s - 1;
+            constexpr uint8_t kSwizzleXXXX = 0x00, kSwizzleYYYY = 0x55, kSwizzleZZZZ = 0xAA;
+            b.op(Opcode::Mov, rd(kRBumpCoordinate), {src(RegisterType::Texture, s)});
+            b.op(Opcode::Mad, rd(kRBumpCoordinate, kXY), {r(kRTexture, kSwizzleXXXX), c(row0), r(kRBumpCoordinate)});
+            b.op(Opcode::Mad, rd(kRBumpCoordinate, kXY), {r(kRTexture, kSwizzleYYYY), c(row1), r(kRBumpCoordinate)});
+            if (previous_op == kBumpEnvMapLuminance)
+                b.op(Opcode::Mad, dst(RegisterType::Temp, kRBumpLuminance, isa::kMaskAll, true),
+                     {r(kRTexture, kSwizzleZZZZ), c(row0, kSwizzleZZZZ), c(row1, kSwizzleZZZZ)});
+            b.op(Opcode::Tex, rd(kRTexture), {r(kRBumpCoordinate), src(RegisterType::Sampler, s)});
+            if (previous_op == kBumpEnvMapLuminance) b.op(Opcode::Mul, rd(kRTexture), {r(kRTexture), r(kRBumpLuminance)});
+        } else if (samples[s]) {
+            // D3DTTFF_PROJECTED: the vertex program put the divisor in w; texldp divides by it.
+            const bool projected = (st[kTssTextureTransformFlags] & kTtffProjected) != 0;
+            b.op(Opcode::Tex, rd(kRTexture), {src(RegisterType::Texture, s), src(RegisterType::Sampler, s)},
+                 projected ? isa::kTexLdProject : 0);
         } else {
             b.op(Opcode::Mov, rd(kRTexture), {c(kPcOne)});
         }
@@ -633,7 +884,9 @@ FixedFunctionProgram fixed_function_pixel_program(const FixedFunctionState& ff, 
             }
         };
         const uint32_t color_op = st[kTssColorOp], alpha_op = st[kTssAlphaOp];
-        emit(color_op, {st[kTssColorArg0], st[kTssColorArg1], st[kTssColorArg2]}, kXYZ, false);
+        // A BUMPENVMAP stage's colour operation only perturbs the next stage's lookup: CURRENT's
+        // colour stays (its alpha operation runs as any other).
+        if (!is_bump(color_op)) emit(color_op, {st[kTssColorArg0], st[kTssColorArg1], st[kTssColorArg2]}, kXYZ, false);
         // DOTPRODUCT3 as the colour operation sets alpha too (D3D9: "the result is replicated
         // to all four channels"); a disabled alpha operation keeps the previous alpha.
         if (color_op != kDotProduct3 && alpha_op != kDisable)

@@ -287,13 +287,13 @@ TEST_F(DeviceTest, RefusedDrawsChangeNothing) {
     EXPECT_FALSE(device->draw_primitive(99, 0, 1));                              // bad type
     EXPECT_TRUE(draw(kTriangleList, 0, tri));                                    // zero primitives: a no-op (D3D_OK, as Wine)
     // No vertex shader: the fixed-function program, refused for a state it does not emulate
-    // (D3DTSS_TCI_SPHEREMAP texture coordinate generation).
+    // (D3DVBF_TWEENING vertex blending).
     ASSERT_TRUE(device->set_vertex_shader(""));
-    ASSERT_TRUE(device->set_texture_stage_state(0, kTssTexCoordIndex, 0x40000));
-    const auto texgen = draw(kTriangleList, 1, tri);
-    EXPECT_FALSE(texgen);
-    EXPECT_NE(texgen.error.find("texture coordinate generation is not emulated"), std::string::npos) << texgen.error;
-    ASSERT_TRUE(device->set_texture_stage_state(0, kTssTexCoordIndex, 0));
+    ASSERT_TRUE(device->set_render_state(rs(RenderStateType::VertexBlend), 255));
+    const auto tweening = draw(kTriangleList, 1, tri);
+    EXPECT_FALSE(tweening);
+    EXPECT_NE(tweening.error.find("TWEENING is not emulated"), std::string::npos) << tweening.error;
+    ASSERT_TRUE(device->set_render_state(rs(RenderStateType::VertexBlend), 0));
     ASSERT_TRUE(device->set_vertex_shader("vs"));
     ASSERT_TRUE(device->end_scene());
     EXPECT_FALSE(draw(kTriangleList, 1, tri));                                   // outside a scene

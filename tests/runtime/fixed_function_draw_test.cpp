@@ -273,6 +273,307 @@ TEST(FixedFunctionDraw, VertexFogFactorAtAKnownDepth) {
     EXPECT_EQ(fogged("EXP2"), 0xFFC7C7FFu);
 }
 
+// A full-target XYZ quad at z = `z` (identity transforms) of format `fvf`, every vertex
+// carrying the same `attributes` after its position, so that every pixel shows the same value.
+std::string uniform_quad(const std::string& fvf, std::initializer_list<float> attributes, float z = 0.5f) {
+    Words w;
+    for (auto [x, y] : {std::pair{-1.0f, 1.0f}, {1.0f, 1.0f}, {-1.0f, -1.0f}, {1.0f, -1.0f}}) w.f({x, y, z}).f(attributes);
+    return "SetFVF " + fvf + "\nDrawPrimitiveUP TRIANGLESTRIP 2 " + std::to_string(4 * (3 + attributes.size())) + " " +
+           w.blob() + "\n";
+}
+
+// A 4x1 texture, POINT filtered, on stage 0 (SELECTARG1 TEXTURE, LIGHTING off): u in [0, 0.25)
+// reads red, [0.25, 0.5) green, [0.5, 0.75) blue, [0.75, 1) white (WRAP outside).
+const std::string kFourTexels =
+    "CreateTexture tex 4 1 1 A8R8G8B8\n"
+    "LockRect tex 0 u8[ 0 0 255 255  0 255 0 255  255 0 0 255  255 255 255 255 ]\nSetTexture 0 tex\n"
+    "SetSamplerState 0 MINFILTER POINT\nSetSamplerState 0 MAGFILTER POINT\n"
+    "SetRenderState LIGHTING FALSE\nSetTextureStageState 0 COLOROP SELECTARG1\n";
+constexpr uint32_t kTexel0 = 0xFFFF0000u, kTexel1 = 0xFF00FF00u, kTexel2 = 0xFF0000FFu, kTexel3 = 0xFFFFFFFFu;
+
+TEST(FixedFunctionDraw, TextureTransformOfTwoComponentCoordinates) {
+    // D3D9 extends (u, v) to (u, v, 1, 0) for the TEXTURE0 matrix, so the third row translates
+    // a 2D coordinate and the fourth does nothing: row 3 = (0.5, 0, 1, 0), row 4 = (0.1, 0, 0, 1):
+    // u = 0.25 + 0.5 = 0.75 -> white (the fourth row would give 0.35, green; both 0.85, white).
+    const std::string matrix = "SetTransform TEXTURE0 f32[ 1 0 0 0  0 1 0 0  0.5 0 1 0  0.1 0 0 1 ]\n";
+    const std::string quad = uniform_quad("{ XYZ TEX1 }", {0.25f, 0.0f});
+    const Outcome transformed = replay_text(kFourTexels + matrix + "SetTextureStageState 0 TEXTURETRANSFORMFLAGS COUNT2\n" + quad);
+    expect_no_diagnostics(transformed.result);
+    EXPECT_EQ(pixel(transformed, 1, 1), kTexel3);
+    // DISABLE (the default): the matrix is ignored, u = 0.25 -> green.
+    const Outcome untransformed = replay_text(kFourTexels + matrix + quad);
+    expect_no_diagnostics(untransformed.result);
+    EXPECT_EQ(pixel(untransformed, 1, 1), kTexel1);
+}
+
+TEST(FixedFunctionDraw, TextureTransformOfOneComponentCoordinates) {
+    // A 1-component coordinate is extended to (u, 1, 0, 0): the second row translates it.
+    // Row 2 = (0.5, 1, 0, 0): u = 0.25 + 0.5 = 0.75 -> white (a row-4 translation, 0, would leave
+    // 0.25, green).
+    const Outcome o = replay_text(kFourTexels + "SetTransform TEXTURE0 f32[ 1 0 0 0  0.5 1 0 0  0 0 1 0  0 0 0 1 ]\n"
+                                  "SetTextureStageState 0 TEXTURETRANSFORMFLAGS COUNT1\n" +
+                                  uniform_quad("{ XYZ TEX1 TEXCOORDSIZE1_0 }", {0.25f}));
+    expect_no_diagnostics(o.result);
+    EXPECT_EQ(pixel(o, 2, 2), kTexel3);
+}
+
+TEST(FixedFunctionDraw, ProjectedTextureCoordinates) {
+    // D3DTTFF_PROJECTED divides by the last of the COUNTn components. (u, v, q) = (0.3, 0, 0.5)
+    // under COUNT3 PROJECTED (identity matrix): u / q = 0.6 -> blue; COUNT3 alone: 0.3 -> green.
+    const std::string quad = uniform_quad("{ XYZ TEX1 TEXCOORDSIZE3_0 }", {0.3f, 0.0f, 0.5f});
+    const Outcome projected =
+        replay_text(kFourTexels + "SetTextureStageState 0 TEXTURETRANSFORMFLAGS { COUNT3 PROJECTED }\n" + quad);
+    expect_no_diagnostics(projected.result);
+    EXPECT_EQ(pixel(projected, 1, 2), kTexel2);
+    const Outcome plain = replay_text(kFourTexels + "SetTextureStageState 0 TEXTURETRANSFORMFLAGS COUNT3\n" + quad);
+    expect_no_diagnostics(plain.result);
+    EXPECT_EQ(pixel(plain, 1, 2), kTexel1);
+    // A 2D coordinate (0.3, 0) -> (0.3, 0, 1, 0) with row 3 = (0, 0, 2, 0): (0.3, 0, 2), projected
+    // 0.15 -> red.
+    const Outcome from_2d = replay_text(kFourTexels + "SetTransform TEXTURE0 f32[ 1 0 0 0  0 1 0 0  0 0 2 0  0 0 0 1 ]\n"
+                                        "SetTextureStageState 0 TEXTURETRANSFORMFLAGS { COUNT3 PROJECTED }\n" +
+                                        uniform_quad("{ XYZ TEX1 }", {0.3f, 0.0f}));
+    expect_no_diagnostics(from_2d.result);
+    EXPECT_EQ(pixel(from_2d, 1, 2), kTexel0);
+    // XYZRHW vertices are not transformed, but PROJECTED still divides by the set's last
+    // component: (0.3, 0, 0.5) -> 0.6, blue.
+    Words rhw;
+    for (auto [x, y] : {std::pair{-0.5f, -0.5f}, {3.5f, -0.5f}, {-0.5f, 3.5f}, {3.5f, 3.5f}})
+        rhw.f({x, y, 0.5f, 1.0f, 0.3f, 0.0f, 0.5f});
+    const Outcome pretransformed = replay_text(kFourTexels + "SetTextureStageState 0 TEXTURETRANSFORMFLAGS { COUNT3 PROJECTED }\n"
+                                               "SetFVF { XYZRHW TEX1 TEXCOORDSIZE3_0 }\nDrawPrimitiveUP TRIANGLESTRIP 2 28 " +
+                                               rhw.blob() + "\n");
+    expect_no_diagnostics(pretransformed.result);
+    EXPECT_EQ(pixel(pretransformed, 2, 1), kTexel2);
+}
+
+TEST(FixedFunctionDraw, TransformedGeneratedCoordinates) {
+    // CAMERASPACEPOSITION (x, y, z, 1) through TEXTURE0 = a scale of x by 0 and a translation of
+    // 0.6 in the fourth row: u = 0.6 everywhere -> blue.
+    const Outcome o = replay_text(kFourTexels + "SetTransform TEXTURE0 f32[ 0 0 0 0  0 1 0 0  0 0 1 0  0.6 0 0 1 ]\n"
+                                  "SetTextureStageState 0 TEXCOORDINDEX { CAMERASPACEPOSITION 0 }\n"
+                                  "SetTextureStageState 0 TEXTURETRANSFORMFLAGS COUNT2\n" +
+                                  uniform_quad("XYZ", {}));
+    expect_no_diagnostics(o.result);
+    EXPECT_EQ(pixel(o, 0, 0), kTexel2);
+    EXPECT_EQ(pixel(o, 3, 3), kTexel2);
+}
+
+TEST(FixedFunctionDraw, SphereMapTextureCoordinates) {
+    // A 2x2 texture: top-left red, top-right green, bottom-left blue, bottom-right white.
+    // LOCALVIEWER off, I = (0, 0, 1); N = (0.48, 0.6, -0.64): N.I = -0.64, R = I - 2 (N.I) N =
+    // (0.6144, 0.768, 0.1808); m = 2 |(Rx, Ry, Rz - 1)| = 2 sqrt(0.37749 + 0.58982 + 0.67109) =
+    // 2.56; u = Rx / m + 0.5 = 0.74, v = -Ry / m + 0.5 = 0.2: the top-right texel, green. (Wine's
+    // Rz + 1 gives (0.70, 0.75) and OpenGL's +Ry / m gives v = 0.8: both bottom-right, white.)
+    const Outcome o = replay_text(
+        "CreateTexture tex 2 2 1 A8R8G8B8\n"
+        "LockRect tex 0 u8[ 0 0 255 255  0 255 0 255  255 0 0 255  255 255 255 255 ]\nSetTexture 0 tex\n"
+        "SetSamplerState 0 MINFILTER POINT\nSetSamplerState 0 MAGFILTER POINT\n"
+        "SetRenderState LIGHTING FALSE\nSetRenderState LOCALVIEWER FALSE\n"
+        "SetTextureStageState 0 COLOROP SELECTARG1\nSetTextureStageState 0 TEXCOORDINDEX { SPHEREMAP 0 }\n" +
+        lit_quad(0.48f, 0.6f, -0.64f));
+    expect_no_diagnostics(o.result);
+    EXPECT_EQ(pixel(o, 1, 1), 0xFF00FF00u);
+    // N = (0.28, 0, -0.96), nearly facing the eye: R = (0.5376, 0, -0.8432), m = 2 sqrt(0.28901
+    // + 3.39737) = 3.84, u = 0.64 -> the 4x1 texture's third texel, blue (Rz + 1 would give m =
+    // 1.12, u = 0.98, white).
+    const Outcome facing = replay_text(kFourTexels + "SetRenderState LOCALVIEWER FALSE\n"
+                                       "SetTextureStageState 0 TEXCOORDINDEX { SPHEREMAP 0 }\n" +
+                                       lit_quad(0.28f, 0, -0.96f));
+    expect_no_diagnostics(facing.result);
+    EXPECT_EQ(pixel(facing, 2, 2), kTexel2);
+}
+
+TEST(FixedFunctionDraw, RangeFogUsesTheDistanceFromTheEye) {
+    // Corners (+-1, +-1, 0.25): RANGEFOGENABLE's distance sqrt(2.0625) = 1.43614 at every vertex;
+    // LINEAR 0..2: f = (2 - 1.43614) / 2 = 0.28193 -> R = G = 71.9 -> 0x48, B (FOGCOLOR blue) 0xFF.
+    // Without range fog d = z = 0.25: f = 0.875 -> 223.1 -> 0xDF.
+    const auto fogged = [](const char* range) {
+        const Outcome o = replay_text(std::string("SetRenderState LIGHTING FALSE\nSetRenderState FOGENABLE TRUE\n"
+                                                  "SetRenderState FOGCOLOR 0xFF0000FF\nSetRenderState FOGSTART 0\n"
+                                                  "SetRenderState FOGEND 2\nSetRenderState FOGVERTEXMODE LINEAR\n"
+                                                  "SetRenderState RANGEFOGENABLE ") +
+                                      range + "\n" + uniform_quad("XYZ", {}, 0.25f));
+        expect_no_diagnostics(o.result);
+        return pixel(o, 2, 1);
+    };
+    EXPECT_EQ(fogged("TRUE"), 0xFF4848FFu);
+    EXPECT_EQ(fogged("FALSE"), 0xFFDFDFFFu);
+}
+
+TEST(FixedFunctionDraw, TableFogOfAFixedFunctionDraw) {
+    // FOGTABLEMODE: the merger's per-pixel factor of the depth (z = 0.25 with identity
+    // transforms), for fixed-function draws as for shaders: EXP density 2: e^-0.5 = 0.60653 ->
+    // 154.67 -> 0x9B.
+    const Outcome o = replay_text(
+        "SetRenderState LIGHTING FALSE\nSetRenderState FOGENABLE TRUE\nSetRenderState FOGCOLOR 0xFF0000FF\n"
+        "SetRenderState FOGDENSITY 2\nSetRenderState FOGTABLEMODE EXP\n" + uniform_quad("XYZ", {}, 0.25f));
+    expect_no_diagnostics(o.result);
+    EXPECT_EQ(pixel(o, 1, 1), 0xFF9B9BFFu);
+}
+
+// The columns (0..3) of row 1 that a blended draw covers, as a 4-character mask ("0110").
+std::string covered_columns(const Outcome& o) {
+    std::string mask;
+    for (unsigned x = 0; x < 4; ++x) mask += pixel(o, x, 1) == 0xFF000000u ? '0' : '1';
+    return mask;
+}
+
+// A quad over the left half of clip space (x in [-1, 0]) of format `fvf`, every vertex with the
+// same `attributes` (blend weights, indices) after its position; lighting off, white.
+std::string left_half_quad(const std::string& fvf, const Words& attributes) {
+    Words w;
+    for (auto [x, y] : {std::pair{-1.0f, 1.0f}, {0.0f, 1.0f}, {-1.0f, -1.0f}, {0.0f, -1.0f}}) {
+        w.f({x, y, 0.5f});
+        w.words.insert(w.words.end(), attributes.words.begin(), attributes.words.end());
+    }
+    return "SetRenderState LIGHTING FALSE\nSetFVF " + fvf + "\nDrawPrimitiveUP TRIANGLESTRIP 2 " +
+           std::to_string(4 * (3 + attributes.words.size())) + " " + w.blob() + "\n";
+}
+
+TEST(FixedFunctionDraw, VertexBlendingWithOneWeight) {
+    // VERTEXBLEND 1WEIGHTS: p' = w p WORLD + (1 - w) p WORLD1. WORLD translates x by 2, WORLD1 is
+    // the identity, w = 0.25: x + 0.5, so the quad spans [-0.5, 0.5]: pixel columns 1 and 2
+    // (centres at -0.75, -0.25, 0.25, 0.75). The weights the other way round (0.75 to WORLD)
+    // would give [0.5, 1.5], column 3; no blending, WORLD alone, nothing on screen.
+    const std::string translate2 = "SetTransform WORLD f32[ 1 0 0 0  0 1 0 0  0 0 1 0  2 0 0 1 ]\n";
+    const std::string quad = left_half_quad("{ XYZB1 }", Words().f({0.25f}));
+    const Outcome blended = replay_text(translate2 + "SetRenderState VERTEXBLEND 1\n" + quad);
+    expect_no_diagnostics(blended.result);
+    EXPECT_EQ(covered_columns(blended), "0110");
+    const Outcome unblended = replay_text(translate2 + quad);
+    expect_no_diagnostics(unblended.result);
+    EXPECT_EQ(covered_columns(unblended), "0000");
+}
+
+TEST(FixedFunctionDraw, IndexedVertexBlending) {
+    // INDEXEDVERTEXBLENDENABLE with one weight: the vertex's indices (5, 2) pick WORLDMATRIX(5)
+    // (x + 2) for w = 0.25 and WORLDMATRIX(2) (identity) for 0.75: x + 0.5, columns 1 and 2 as in
+    // VertexBlendingWithOneWeight. The indices are the bytes in memory order, for UBYTE4 and for
+    // D3DCOLOR alike (a D3DCOLOR word 0x00000205 holds bytes 5, 2, 0, 0; read as (R, G, B) it
+    // would give indices (0, 2, 5): WORLD, x - 2, for w: x - 0.5, column 0).
+    const std::string state = "SetTransform WORLDMATRIX5 f32[ 1 0 0 0  0 1 0 0  0 0 1 0  2 0 0 1 ]\n"
+                              "SetTransform WORLD f32[ 1 0 0 0  0 1 0 0  0 0 1 0  -2 0 0 1 ]\n"
+                              "SetRenderState VERTEXBLEND 1\nSetRenderState INDEXEDVERTEXBLENDENABLE TRUE\n";
+    for (const char* fvf : {"{ XYZB2 LASTBETA_UBYTE4 }", "{ XYZB2 LASTBETA_D3DCOLOR }"}) {
+        const Outcome o = replay_text(state + left_half_quad(fvf, Words().f({0.25f}).color(0x00000205u)));
+        expect_no_diagnostics(o.result);
+        EXPECT_EQ(covered_columns(o), "0110") << fvf;
+    }
+}
+
+TEST(FixedFunctionDraw, BlendedNormalsUseEachMatrixsInverseTranspose) {
+    // Directional light along +z (L = (0, 0, -1)), white, material diffuse 1; n = (0, 0, -1).
+    // WORLD identity, WORLD1 scales z by 2, whose inverse transpose scales it by 0.5; w = 0.5:
+    // N = 0.5 (0, 0, -1) + 0.5 (0, 0, -0.5) = (0, 0, -0.75), N.L = 0.75 -> 191.25 -> 0xBF (WORLD1
+    // itself would give (0, 0, -1.5), 255). NORMALIZENORMALS: N = (0, 0, -1) -> 0xFF.
+    Words w;
+    for (auto [x, y] : {std::pair{-1.0f, 1.0f}, {1.0f, 1.0f}, {-1.0f, -1.0f}, {1.0f, -1.0f}})
+        w.f({x, y, 0.25f, 0.5f, 0.0f, 0.0f, -1.0f});
+    const auto lit = [&](const char* normalize) {
+        const Outcome o = replay_text(
+            std::string("SetMaterial { 1 1 1 1 } { 0 0 0 0 } { 0 0 0 0 } { 0 0 0 0 } 0\n"
+                        "SetLight 0 DIRECTIONAL { 1 1 1 1 } { 0 0 0 0 } { 0 0 0 0 } { 0 0 0 } { 0 0 1 } 0 0 0 0 0 0 0\n"
+                        "LightEnable 0 TRUE\nSetTransform WORLD1 f32[ 1 0 0 0  0 1 0 0  0 0 2 0  0 0 0 1 ]\n"
+                        "SetRenderState VERTEXBLEND 1\nSetRenderState NORMALIZENORMALS ") +
+            normalize + "\nSetFVF { XYZB1 NORMAL }\nDrawPrimitiveUP TRIANGLESTRIP 2 28 " + w.blob() + "\n");
+        expect_no_diagnostics(o.result);
+        return pixel(o, 1, 1);
+    };
+    EXPECT_EQ(lit("FALSE"), 0xFFBFBFBFu);
+    EXPECT_EQ(lit("TRUE"), 0xFFFFFFFFu);
+}
+
+// The 4x4 target as 16 characters, '1' where a pixel is not the clear colour.
+std::string coverage(const Outcome& o) {
+    std::string mask;
+    for (unsigned y = 0; y < 4; ++y)
+        for (unsigned x = 0; x < 4; ++x) mask += pixel(o, x, y) == 0xFF000000u ? '0' : '1';
+    return mask;
+}
+
+TEST(FixedFunctionDraw, PointSizeFromTheVertex) {
+    // XYZRHW | PSIZE | DIFFUSE point at pixel centre (2, 2), PSIZE 3: the square [0.5, 3.5]^2
+    // holds the centres 1..3 in both directions. Without PSIZE, POINTSIZE (1): pixel (2, 2) only.
+    Words with;
+    with.f({2, 2, 0.5f, 1, 3}).color(0xFFFFFFFFu);
+    const Outcome sized = replay_text("SetFVF { XYZRHW PSIZE DIFFUSE }\nDrawPrimitiveUP POINTLIST 1 24 " + with.blob() + "\n");
+    expect_no_diagnostics(sized.result);
+    EXPECT_EQ(coverage(sized), "0000" "0111" "0111" "0111");
+    Words without;
+    without.f({2, 2, 0.5f, 1}).color(0xFFFFFFFFu);
+    const Outcome plain = replay_text("SetFVF { XYZRHW DIFFUSE }\nDrawPrimitiveUP POINTLIST 1 20 " + without.blob() + "\n");
+    expect_no_diagnostics(plain.result);
+    EXPECT_EQ(coverage(plain), "0000" "0000" "0010" "0000");
+}
+
+TEST(FixedFunctionDraw, PointScaleWithTheDistanceFromTheEye) {
+    // An XYZ point at (0.5, 0, 0.5) (identity transforms: pixel centre (3, 2)), POINTSIZE 0.53033,
+    // POINTSCALEENABLE with A = B = 0, C = 1: De = |(0.5, 0, 0.5)| = 0.70711, size = Vh Si
+    // sqrt(1 / (C De^2)) = 4 * 0.53033 / 0.70711 = 3: [1.5, 4.5] x [0.5, 3.5], columns 2..3, rows
+    // 1..3. (De = z, 0.5, would give 4.24: columns 1..3, rows 0..3.) Unscaled, 0.53033 is raised
+    // to POINTSIZE_MIN (1): pixel (3, 2) only.
+    Words w;
+    w.f({0.5f, 0, 0.5f});
+    const std::string draw = "SetRenderState LIGHTING FALSE\nSetRenderState POINTSIZE 0.53033\n"
+                             "SetRenderState POINTSCALE_A 0\nSetRenderState POINTSCALE_B 0\n"
+                             "SetRenderState POINTSCALE_C 1\nSetFVF XYZ\nDrawPrimitiveUP POINTLIST 1 12 " + w.blob() + "\n";
+    const Outcome scaled = replay_text("SetRenderState POINTSCALEENABLE TRUE\n" + draw);
+    expect_no_diagnostics(scaled.result);
+    EXPECT_EQ(coverage(scaled), "0000" "0011" "0011" "0011");
+    const Outcome unscaled = replay_text(draw);
+    expect_no_diagnostics(unscaled.result);
+    EXPECT_EQ(coverage(unscaled), "0000" "0000" "0001" "0000");
+}
+
+TEST(FixedFunctionDraw, PointSpriteTextureCoordinates) {
+    // POINTSPRITEENABLE: t0 runs from (0, 0) at the sprite's top-left to (1, 1) at its
+    // bottom-right, so a 4-pixel sprite over the whole target shows a 2x2 texture's quadrants
+    // (POINT filtered): red, green / blue, white; the vertex has no texture coordinates.
+    Words w;
+    w.f({2, 2, 0.5f, 1, 4}).color(0xFFFFFFFFu);
+    const Outcome o = replay_text(
+        "CreateTexture tex 2 2 1 A8R8G8B8\n"
+        "LockRect tex 0 u8[ 0 0 255 255  0 255 0 255  255 0 0 255  255 255 255 255 ]\nSetTexture 0 tex\n"
+        "SetSamplerState 0 MINFILTER POINT\nSetSamplerState 0 MAGFILTER POINT\n"
+        "SetRenderState POINTSPRITEENABLE TRUE\nSetTextureStageState 0 COLOROP SELECTARG1\n"
+        "SetFVF { XYZRHW PSIZE DIFFUSE }\nDrawPrimitiveUP POINTLIST 1 24 " + w.blob() + "\n");
+    expect_no_diagnostics(o.result);
+    EXPECT_EQ(pixel(o, 0, 0), 0xFFFF0000u);
+    EXPECT_EQ(pixel(o, 3, 0), 0xFF00FF00u);
+    EXPECT_EQ(pixel(o, 0, 3), 0xFF0000FFu);
+    EXPECT_EQ(pixel(o, 3, 3), 0xFFFFFFFFu);
+}
+
+TEST(FixedFunctionDraw, BumpEnvironmentMapPerturbsTheNextStage) {
+    // Stage 0 BUMPENVMAP with a 1x1 A8R8G8B8 "du dv" texture: R = 128 (du = 0.50196), G = 64
+    // (dv = 0.25098), B = 128 (luminance 0.50196); stage 1 SELECTARG1 TEXTURE on the 4x1 stripes
+    // (red, green, blue, white) at u = 0.1 from TEX2's second set. BUMPENVMAT00 = 0.5, BUMPENVMAT10
+    // = 1 (M01 = M11 = 0): u' = 0.1 + 0.5 du + 1 dv = 0.1 + 0.25098 + 0.25098 = 0.60196 -> blue
+    // (without dv, 0.35: green; no bump: red). BUMPENVMAPLUMINANCE, LSCALE 1, LOFFSET 0: blue times
+    // 0.50196 -> 128 (0x80); alpha keeps stage 0's (SELECTARG1 TEXTURE, 0xFF).
+    Words w;
+    for (auto [x, y] : {std::pair{-0.5f, -0.5f}, {3.5f, -0.5f}, {-0.5f, 3.5f}, {3.5f, 3.5f}})
+        w.f({x, y, 0.5f, 1.0f, 0.5f, 0.5f, 0.1f, 0.5f});
+    const auto bumped = [&](const char* op) {
+        const Outcome o = replay_text(
+            "CreateTexture dudv 1 1 1 A8R8G8B8\nLockRect dudv 0 u8[ 128 64 128 255 ]\nSetTexture 0 dudv\n"
+            "CreateTexture stripes 4 1 1 A8R8G8B8\n"
+            "LockRect stripes 0 u8[ 0 0 255 255  0 255 0 255  255 0 0 255  255 255 255 255 ]\nSetTexture 1 stripes\n"
+            "SetSamplerState 1 MINFILTER POINT\nSetSamplerState 1 MAGFILTER POINT\n"
+            "SetTextureStageState 0 COLOROP " + std::string(op) + "\n"
+            "SetTextureStageState 0 BUMPENVMAT00 0.5\nSetTextureStageState 0 BUMPENVMAT10 1\n"
+            "SetTextureStageState 0 BUMPENVLSCALE 1\nSetTextureStageState 0 BUMPENVLOFFSET 0\n"
+            "SetTextureStageState 1 COLOROP SELECTARG1\n"
+            "SetFVF { XYZRHW TEX2 }\nDrawPrimitiveUP TRIANGLESTRIP 2 32 " + w.blob() + "\n");
+        expect_no_diagnostics(o.result);
+        return pixel(o, 1, 2);
+    };
+    EXPECT_EQ(bumped("BUMPENVMAP"), 0xFF0000FFu);
+    EXPECT_EQ(bumped("BUMPENVMAPLUMINANCE"), 0xFF000080u);
+    EXPECT_EQ(bumped("SELECTARG2"), 0xFFFF0000u);  // stage 0 not a bump stage: u = 0.1, red
+}
+
 // Stage 0 = OP(arg1 TFACTOR, arg2 DIFFUSE) over the whole target; the colour at pixel (0, 0).
 uint32_t stage0(const std::string& color_op, uint32_t tfactor, uint32_t diffuse, const std::string& extra = "") {
     const Outcome o = replay_text("SetRenderState TEXTUREFACTOR " + std::to_string(tfactor) +
@@ -393,6 +694,7 @@ TEST(FixedFunctionDraw, BadStageValuesAreRefused) {
     };
     EXPECT_EQ(refusal(0, kTssColorOp, 99), "texture stage 0 COLOROP 99 is not a D3DTEXTUREOP");
     EXPECT_EQ(refusal(1, kTssAlphaOp, 17), "texture stage 1 ALPHAOP PREMODULATE is not emulated yet");
+    EXPECT_EQ(refusal(1, kTssAlphaOp, 22), "texture stage 1 ALPHAOP BUMPENVMAP/BUMPENVMAPLUMINANCE is a colour operation only");
     EXPECT_EQ(refusal(0, kTssColorArg1, 7), "texture stage 0: 7 is not a D3DTA argument");
     EXPECT_EQ(refusal(0, kTssResultArg, kTaTexture), "texture stage 0: RESULTARG must be CURRENT or TEMP");
     // The default state builds.

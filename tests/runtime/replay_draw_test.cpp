@@ -135,8 +135,8 @@ TEST(ReplayDraw, RefusedDrawsKeepTheirLineAndTheSurface) {
         "SetStreamSource 0 vb 0 12\n"                      // 21
         "DrawPrimitive TRIANGLELIST 0 2\n"                 // 22: 6 vertices, the buffer holds 3
         "SetVertexShader NULL\n"                           // 23
-        "SetTextureStageState 0 TEXCOORDINDEX { SPHEREMAP 0 }\n"          // 24
-        "DrawPrimitiveUP TRIANGLESTRIP 2 12 f32[ " + kQuadStrip + " ]\n"  // 25: fixed function, texgen refused
+        "SetRenderState VERTEXBLEND 255\n"                                // 24: TWEENING
+        "DrawPrimitiveUP TRIANGLESTRIP 2 12 f32[ " + kQuadStrip + " ]\n"  // 25: fixed function, tweening refused
         "EndScene\n"
         "DrawPrimitiveUP TRIANGLESTRIP 2 12 f32[ " + kQuadStrip + " ]\n");  // 27: outside the scene
     ASSERT_EQ(o.result.diagnostics.size(), 3u);
@@ -144,7 +144,7 @@ TEST(ReplayDraw, RefusedDrawsKeepTheirLineAndTheSurface) {
     EXPECT_EQ(o.result.diagnostics[0].call, "DrawPrimitive");
     EXPECT_EQ(o.result.diagnostics[1].line, 25u);
     EXPECT_EQ(o.result.diagnostics[1].call, "DrawPrimitiveUP");
-    EXPECT_NE(o.result.diagnostics[1].message.find("texture coordinate generation"), std::string::npos)
+    EXPECT_NE(o.result.diagnostics[1].message.find("TWEENING"), std::string::npos)
         << o.result.diagnostics[1].message;
     EXPECT_EQ(o.result.diagnostics[2].line, 27u);
     EXPECT_NE(o.result.diagnostics[2].message.find("BeginScene"), std::string::npos) << o.result.diagnostics[2].message;
