@@ -174,7 +174,7 @@ const emu::jit::CompiledShader* compiled_for(Device::ShaderObject::Lowered& entr
 
 // Everything the pixel part of a draw reads: built once, shared read-only by the tile threads.
 struct PixelPipeline {
-    const emu::Executable* ps = nullptr;  // null: no pixel shader (oC0 = interpolated diffuse)
+    const emu::Executable* ps = nullptr;  // the application's shader or the fixed-function program
     const emu::jit::CompiledShader* ps_compiled = nullptr;  // ps as native code (Engine::Jit)
     const emu::ConstantFile* ps_constants = nullptr;
     uint16_t ps_varyings = 0;             // what interpolation writes
@@ -236,15 +236,10 @@ void shade_quads(const PixelPipeline& pipe, const PrimitiveSetup& prim, std::spa
     }
     w.batch.killed = 0;
     observer.before_shader(w.batch);
-    if (pipe.ps_compiled) {
+    if (pipe.ps_compiled)
         pipe.ps_compiled->run(*pipe.ps_constants, w.batch, &w.sampler);
-    } else if (pipe.ps) {
+    else
         emu::execute(*pipe.ps, *pipe.ps_constants, w.batch, &w.sampler);
-    } else {
-        // No pixel shader: D3D9's default texture stage 0 without a texture passes the diffuse
-        // colour through.
-        w.batch.render_target(0) = w.batch.input(0);
-    }
     w.pixels_shaded += lanes_in(live);
     w.pixels_killed += lanes_in(live & w.batch.killed);
     observer.shaded(w.batch, live);
@@ -686,7 +681,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
         ff_ps_constants.resize(kMaxPixelShaderConstantsF, {0.0f, 0.0f, 0.0f, 0.0f});
     }
     ShaderObject& vs_object = vertex_shader_ ? *vertex_shader_->shader : *ff_vs;
-    ShaderObject* ps_object = pixel_shader_ ? pixel_shader_->shader.get() : ff_ps.get();
+    ShaderObject& ps_object = pixel_shader_ ? *pixel_shader_->shader : *ff_ps;
     const emu::StaticFlowConstants no_flow{};
     const emu::StaticFlowConstants& vs_flow = vertex_shader_ ? vs_flow_ : no_flow;
     const emu::StaticFlowConstants& ps_flow = pixel_shader_ ? ps_flow_ : no_flow;
@@ -697,13 +692,10 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     for (unsigned i = 0; i < kMaxRenderTargets; ++i)
         if (targets.color[i] && (merger.write_mask[i] & 0xF)) ps_outputs |= output_bit(slot::kRenderTargetFirst + i);
     ps_outputs |= output_bit(slot::kDepth);
-    ShaderObject::Lowered* ps_entry = nullptr;
-    if (ps_object) {
-        ps_entry = lowered_for(*ps_object, ps_flow, ps_outputs, options_.precision, stats_, error);
-        if (!ps_entry) return CallResult::fail("pixel shader: " + error);
-    }
-    const emu::Executable* ps = ps_entry ? &ps_entry->executable : nullptr;
-    uint16_t varyings = ps ? varyings_read_by(*ps) : static_cast<uint16_t>(1u << kVaryingColor0);
+    ShaderObject::Lowered* ps_entry = lowered_for(ps_object, ps_flow, ps_outputs, options_.precision, stats_, error);
+    if (!ps_entry) return CallResult::fail("pixel shader: " + error);
+    const emu::Executable& ps = ps_entry->executable;
+    uint16_t varyings = varyings_read_by(ps);
     if (merger.fog_enable && merger.fog_table_mode == FogMode::None) varyings |= 1u << kVaryingFog;
     const bool points = type == PrimitiveType::PointList ||
                         (render_state_.fill_mode == FillMode::Point && type >= PrimitiveType::TriangleList);
@@ -716,7 +708,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     // Engine::Jit: the shaders as native code (compiled on first use, shared by every device).
     const bool jit = options_.engine == DeviceOptions::Engine::Jit;
     const emu::jit::CompiledShader* vs_compiled = jit ? compiled_for(*vs_entry, stats_) : nullptr;
-    const emu::jit::CompiledShader* ps_compiled = jit && ps_entry ? compiled_for(*ps_entry, stats_) : nullptr;
+    const emu::jit::CompiledShader* ps_compiled = jit ? compiled_for(*ps_entry, stats_) : nullptr;
 
     stats_.pipeline_seconds += lap(clock);
 
@@ -772,25 +764,21 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
 
     // Pixel pipeline for this draw.
     PixelPipeline pipe;
-    pipe.ps = ps;
+    pipe.ps = &ps;
     pipe.ps_compiled = ps_compiled;
-    emu::ConstantFile ps_constants;
-    if (ps) {
-        ps_constants = ps->bind_constants(pixel_shader_ ? ps_f_ : ff_ps_constants);
-        pipe.ps_constants = &ps_constants;
-    }
+    const emu::ConstantFile ps_constants = ps.bind_constants(pixel_shader_ ? ps_f_ : ff_ps_constants);
+    pipe.ps_constants = &ps_constants;
     pipe.ps_varyings = varyings;
     pipe.merger = merger;
     pipe.targets = targets;
-    const auto& written = ps ? ps->components_written() : std::array<uint8_t, emu::kSlotCount>{};
-    pipe.merge_template.color_outputs = ps ? 0 : 1;
-    if (ps)
-        for (unsigned i = 0; i < kMaxRenderTargets; ++i)
-            if (written[slot::kRenderTargetFirst + i]) pipe.merge_template.color_outputs |= static_cast<uint8_t>(1u << i);
-    pipe.merge_template.shader_depth = ps && written[slot::kDepth] != 0;
+    const auto& written = ps.components_written();
+    pipe.merge_template.color_outputs = 0;
+    for (unsigned i = 0; i < kMaxRenderTargets; ++i)
+        if (written[slot::kRenderTargetFirst + i]) pipe.merge_template.color_outputs |= static_cast<uint8_t>(1u << i);
+    pipe.merge_template.shader_depth = written[slot::kDepth] != 0;
     pipe.merge_template.generic_path = options_.reference_paths;
     pipe.reference_paths = options_.reference_paths;
-    const bool kills = ps_object && ps_object->texkill;
+    const bool kills = ps_object.texkill;
     pipe.early_depth_stencil = merger.depth_stencil.active() && !pipe.merge_template.shader_depth && !kills &&
                                !merger.alpha_test;
 
@@ -829,7 +817,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
         unscissored.clip_rect = make_setup_state(unscissored_rs, viewport_, rt0->width(), rt0->height(), scissor_).clip_rect;
         const DrawStatistics counted = stats_;  // the second pass is not the draw's work
         std::optional<DebugShader> ps_debug;
-        if (pixel_watch_->debug_shaders && ps_object)
+        if (pixel_watch_->debug_shaders)
             ps_debug = debug_shader(pixel_shader_ ? pixel_shader_->shader : ff_ps, !pixel_shader_, ps_flow, ps_outputs,
                                     options_.precision, pixel_shader_ ? std::span(ps_f_) : std::span(ff_ps_constants));
         record_pixel_history(*pixel_watch_, pipe, type, render_state_.fill_mode, assembled.primitives, shaded,
