@@ -14,6 +14,7 @@
 #include "sm2/runtime/device.h"
 #include "sm2/runtime/replay.h"
 #include "sm2/runtime/stream_assembler.h"
+#include "runtime/replay_text.h"
 
 namespace sm2::runtime {
 namespace {
@@ -26,34 +27,10 @@ const std::string kSetup =
     "Clear TARGET 0xFF000000 1 0\n"
     "BeginScene\n";
 
-struct Outcome {
-    ReplayResult result;
-    std::vector<uint8_t> pixels;  // back buffer bytes, B G R A per pixel
-    DrawStatistics statistics;
-};
+using Outcome = test::ReplayOutcome;
+using test::expect_no_diagnostics;
 
-Outcome replay_text(const std::string& body) {
-    cs::TextOptions text;
-    text.file_name = "ff.sm2cs";
-    auto parsed = cs::parse_text(kSetup + body, text);
-    EXPECT_TRUE(parsed.ok()) << parsed.error->to_string();
-    Outcome out;
-    if (!parsed.ok()) return out;
-    Device device;
-    ReplayOptions options;
-    options.file_name = "ff.sm2cs";
-    options.assembler = runtime::stream_assembler();
-    out.result = replay(device, *parsed.stream, options);
-    const Surface* back = device.surface("backbuffer");
-    out.pixels.resize(back->bytes().size());
-    std::memcpy(out.pixels.data(), back->bytes().data(), out.pixels.size());
-    out.statistics = device.statistics();
-    return out;
-}
-
-void expect_no_diagnostics(const ReplayResult& r) {
-    for (const auto& d : r.diagnostics) ADD_FAILURE() << d.to_string();
-}
+Outcome replay_text(const std::string& body) { return test::replay_stream_text(kSetup + body, "ff.sm2cs"); }
 
 // The A8R8G8B8 pixel (x, y) as 0xAARRGGBB.
 uint32_t pixel(const Outcome& o, unsigned x, unsigned y) {

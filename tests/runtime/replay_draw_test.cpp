@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sm2/runtime/stream_assembler.h"
+#include "runtime/replay_text.h"
 #include "sm2/runtime/replay.h"
 
 namespace sm2::runtime {
@@ -40,40 +41,16 @@ const std::string kSetup =
 const std::vector<uint8_t> kOrange = {0x00, 0x80, 0xFF, 0xFF};
 const std::vector<uint8_t> kBlack = {0x00, 0x00, 0x00, 0xFF};
 
-struct Outcome {
-    ReplayResult result;
-    std::vector<uint8_t> pixels;  // back buffer bytes
-    DrawStatistics statistics;
-};
+using Outcome = test::ReplayOutcome;
+using test::expect_no_diagnostics;
 
-Outcome replay_text(const std::string& body) {
-    cs::TextOptions text;
-    text.file_name = "d.sm2cs";
-    auto parsed = cs::parse_text(kSetup + body, text);
-    EXPECT_TRUE(parsed.ok()) << parsed.error->to_string();
-    Outcome out;
-    if (!parsed.ok()) return out;
-    Device device;
-    ReplayOptions options;
-    options.file_name = "d.sm2cs";
-    options.assembler = runtime::stream_assembler();
-    out.result = replay(device, *parsed.stream, options);
-    const Surface* back = device.surface("backbuffer");
-    out.pixels.resize(back->bytes().size());
-    std::memcpy(out.pixels.data(), back->bytes().data(), out.pixels.size());
-    out.statistics = device.statistics();
-    return out;
-}
+Outcome replay_text(const std::string& body) { return test::replay_stream_text(kSetup + body, "d.sm2cs"); }
 
 // Every pixel of the 4x4 back buffer is `texel`.
 std::vector<uint8_t> filled(const std::vector<uint8_t>& texel) {
     std::vector<uint8_t> out;
     for (int i = 0; i < 16; ++i) out.insert(out.end(), texel.begin(), texel.end());
     return out;
-}
-
-void expect_no_diagnostics(const ReplayResult& r) {
-    for (const auto& d : r.diagnostics) ADD_FAILURE() << d.to_string();
 }
 
 // The whole viewport as a quad in clip space, z = 0.5.
