@@ -4,6 +4,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <string>
+
 namespace sm2::tools {
 
 enum ExitStatus : int { kOk = 0, kInvalidInput = 1, kBadUsage = 2 };
@@ -11,6 +13,16 @@ enum ExitStatus : int { kOk = 0, kInvalidInput = 1, kBadUsage = 2 };
 // The engine `run`, `replay` and `bench` use without --engine: native code where the build has
 // the JIT (the interpreter otherwise; both give the same bytes).
 inline constexpr const char* kDefaultEngine = "jit";
+
+// The positional STREAM argument of the commands that replay a stream or capture (`replay`,
+// `state`, `pixel`, `debug`), required, with its one help text.
+inline CLI::Option* add_stream_argument(CLI::App& cmd, std::string& stream) {
+    return cmd
+        .add_option("stream", stream,
+                    "Command stream, text (.sm2cs) or binary (.sm2cb), '-' for stdin; or an apitrace capture (.trace), "
+                    "imported as it replays")
+        ->required();
+}
 
 // Shader text and bytecode: `asm`, `dis`, `validate`.
 void add_shader_commands(CLI::App& app, int& status);

@@ -542,8 +542,7 @@ int run_debug(const DebugCliOptions& o) {
 }
 
 void add_stream_and_frame(CLI::App& cmd, PixelCliOptions& o) {
-    cmd.add_option("stream", o.stream, "Command stream (.sm2cs, .sm2cb, '-' for stdin) or apitrace capture (.trace)")
-        ->required();
+    add_stream_argument(cmd, o.stream);
     cmd.add_option("--frame", o.frame, "The frame (0 is the first Present's)")->required();
 }
 

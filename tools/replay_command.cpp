@@ -595,10 +595,7 @@ void add_replay_commands(CLI::App& app, int& status) {
     auto* replay = app.add_subcommand(
         "replay", "Replay a command stream: every Present writes DIR/frame_NNNN.png, SaveSurface writes relative "
                   "to DIR; refused calls are reported with file:line (exit 1) and the replay goes on");
-    replay->add_option("stream", r->stream,
-                       "Command stream, text (.sm2cs) or binary (.sm2cb), '-' for stdin; or an apitrace capture (.trace), "
-                       "imported as it replays")
-        ->required();
+    add_stream_argument(*replay, r->stream);
     replay->add_option("-o,--output", r->output,
                        "Output folder (created if missing; refused if it holds frames of an earlier replay)")
         ->required();

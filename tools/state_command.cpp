@@ -327,8 +327,7 @@ void add_state_command(CLI::App& app, int& status) {
         "state", "The device state after one call of a command stream or trace: bound resources, render/sampler/"
                  "texture-stage states that differ from their defaults, constants, viewport, streams, shaders "
                  "with their disassembly");
-    cmd->add_option("stream", o->stream, "Command stream (.sm2cs, .sm2cb, '-' for stdin) or apitrace capture (.trace)")
-        ->required();
+    add_stream_argument(*cmd, o->stream);
     cmd->add_option("--call", o->call,
                     "The call after which to show the state: numbered from 1 in streams (as sm2 replay --stats), the "
                     "trace's own numbers in traces")
