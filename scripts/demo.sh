@@ -6,13 +6,17 @@
 #     disassembled back to text;
 #  3. the probe pixels of samples/scenes/probes.txt are checked against the frames, a one-screen
 #     summary is printed (scenes, frames, time per scene, probes passed) and OUT/index.html, a
-#     contact sheet of every frame (relative links, no external resources), is written.
+#     contact sheet of every frame (relative links, no external resources), is written;
+#  4. a real apitrace capture (tests/data/traces/ff_lit_cube.trace, fixed-function) is imported
+#     and replayed into OUT/trace/ and each frame checked with `sm2 diff` against Wine's frame:
+#     every channel within 0.008 (2/255) but at most 0.01% of the pixels (triangle-edge pixels).
 #
 #   scripts/demo.sh [--scenes PATTERN] [--out DIR] [--sm2 PATH]
 #     --scenes PATTERN  only the scenes whose name matches the shell pattern, e.g. '0[12]_*' or '*lake*'
 #     --out DIR         where everything goes (default: out)
 #     --sm2 PATH        use this sm2 and skip setup and build
-# Exit status: 0 when every scene replayed, every shader assembled and every probe passed.
+# Exit status: 0 when every scene replayed, every shader assembled, every probe passed and the
+# trace's frames matched.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 pattern='*'
@@ -85,7 +89,32 @@ for src in samples/shaders/*.asm; do
   fi
 done
 
+trace=tests/data/traces/ff_lit_cube
+trace_failures=0
+rm -rf "$out/trace"
+mkdir -p "$out/trace"
+if "$sm2" replay "$trace.trace" -o "$out/trace" > "$out/trace/replay.log" 2>&1; then
+  for expected in "$trace"/frame_*.png; do
+    n=$(basename "$expected" .png)
+    n=${n#frame_}
+    frame=$(printf '%s/trace/frame_%04d.png' "$out" "$n")
+    # sm2 diff: 0 PASS, 1 WARNING (failing pixels within --failpercent), 2 FAILURE.
+    verdict=0
+    "$sm2" diff "$frame" "$expected" --tolerance 0.008 --failpercent 0.01 > "$frame.diff.txt" 2>&1 || verdict=$?
+    if [ "$verdict" -le 1 ]; then
+      echo "ok    trace $(basename "$trace") frame $n matches Wine's (tolerance 0.008, 0.01% of pixels)"
+    else
+      echo "FAIL  trace $(basename "$trace") frame $n (see $frame.diff.txt)"
+      trace_failures=$((trace_failures + 1))
+    fi
+  done
+else
+  echo "FAIL  trace $trace.trace (see $out/trace/replay.log)"
+  trace_failures=1
+fi
+
 status=0
 python3 scripts/demo_report.py --out "$out" --runs "$runs" --shaders "$shaders" \
   --shader-failures "$shader_failures" || status=$?
+[ "$trace_failures" -eq 0 ] || status=1
 exit "$status"

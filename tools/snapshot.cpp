@@ -36,24 +36,10 @@ std::vector<std::string> write_snapshot(const runtime::DeviceInspection& state, 
         written.push_back(path);
     }
     if (const runtime::DepthStencilSurface* ds = state.depth_stencil) {
-        runtime::Image depth{ds->width(), ds->height(), {}};
-        depth.rgba.resize(size_t{depth.width} * depth.height * 4);
-        runtime::Image stencil = depth;
-        for (uint32_t y = 0; y < ds->height(); ++y)
-            for (uint32_t x = 0; x < ds->width(); ++x) {
-                const size_t at = (size_t{y} * ds->width() + x) * 4;
-                const float z = ds->depth(x, y);
-                const float s = static_cast<float>(ds->stencil(x, y)) / 255.0f;
-                for (size_t c = 0; c < 3; ++c) {
-                    depth.rgba[at + c] = z;
-                    stencil.rgba[at + c] = s;
-                }
-                depth.rgba[at + 3] = stencil.rgba[at + 3] = 1.0f;
-            }
-        runtime::write_image(depth, base + "_depth.exr");
+        runtime::write_surface(runtime::depth_as_surface(*ds), base + "_depth.exr");
         written.push_back(base + "_depth.exr");
         if (ds->info().stencil_bits > 0) {
-            runtime::write_image(stencil, base + "_stencil.png");
+            runtime::write_surface(runtime::stencil_as_surface(*ds), base + "_stencil.png");
             written.push_back(base + "_stencil.png");
         }
     }

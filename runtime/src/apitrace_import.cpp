@@ -47,7 +47,8 @@ struct Lock {
     int32_t face = -1;
     uint64_t pitch = 0, slice_pitch = 0;
     bool whole = true;         // textures: no sub-rectangle or box
-    int64_t left = 0, top = 0, right = 0, bottom = 0;  // LockRect's pRect when not whole
+    int64_t left = 0, top = 0, right = 0, bottom = 0;  // LockRect's pRect / LockBox's pBox when not whole
+    int64_t front = 0, back = 0;                       // LockBox's pBox when not whole
 };
 
 cs::Value ident(std::string_view text) {
@@ -269,14 +270,19 @@ private:
         return false;
     }
 
-    bool create_device(const Call& c) {
-        const Value& pp = deref(c, "pPresentationParameters");
+    // CreateDevice's and Reset's D3DPRESENT_PARAMETERS: width height format [depth_format].
+    static std::vector<cs::Value> presentation_args(const Value& pp) {
         const auto width = member(pp, "BackBufferWidth"), height = member(pp, "BackBufferHeight");
         if (width <= 0 || height <= 0) throw Skip{"a back buffer of the window's size (0 in the parameters) is not known"};
         int64_t fmt = member(pp, "BackBufferFormat");
         if (fmt == 0) fmt = static_cast<int64_t>(Format::X8R8G8B8);  // D3DFMT_UNKNOWN in windowed mode: the desktop's
         std::vector<cs::Value> args{integer(width), integer(height), ident(format_name(fmt))};
         if (member(pp, "EnableAutoDepthStencil") != 0) args.push_back(ident(format_name(member(pp, "AutoDepthStencilFormat"))));
+        return args;
+    }
+
+    bool create_device(const Call& c) {
+        std::vector<cs::Value> args = presentation_args(deref(c, "pPresentationParameters"));
         if (device_created_) throw Skip{"a second device"};
         const uint64_t ptr = out_pointer(c, "ppReturnedDeviceInterface");
         emit("CreateDevice", std::move(args));
@@ -327,6 +333,10 @@ private:
             }
             emit(std::string(m), std::move(args));
             add(ptr, Object::Kind::StateBlock, "sb");
+            return true;
+        }
+        if (m == "Reset") {
+            emit("Reset", presentation_args(deref(c, "pPresentationParameters")));
             return true;
         }
         if (m == "SetSoftwareVertexProcessing") {
@@ -819,6 +829,15 @@ private:
             l.slice_pitch = static_cast<uint64_t>(member(locked, "SlicePitch"));
             bits = static_cast<uint64_t>(member(locked, "pBits"));
             l.whole = pointer(c, "pBox") == 0;
+            if (!l.whole) {
+                const Value& b = deref(c, "pBox");
+                l.left = member(b, "Left");
+                l.top = member(b, "Top");
+                l.front = member(b, "Front");
+                l.right = member(b, "Right");
+                l.bottom = member(b, "Bottom");
+                l.back = member(b, "Back");
+            }
             l.level = u32(c, "Level");
         }
         locks_[bits] = l;
@@ -845,7 +864,7 @@ private:
             emit("Lock", {ident(o.name), integer(static_cast<int64_t>(l->offset + (dest - start))), blob(bytes, cs::BlobType::Hex)});
             return true;
         }
-        if (dest != start || (!l->whole && o.kind == Object::Kind::VolumeTexture)) throw Skip{"an upload to part of a texture level"};
+        if (dest != start) throw Skip{"an upload to part of a texture level"};
         const bool texture = o.kind == Object::Kind::Texture || o.kind == Object::Kind::CubeTexture ||
                              o.kind == Object::Kind::VolumeTexture ||
                              (o.kind == Object::Kind::Surface && o.format != Format::Unknown);
@@ -864,7 +883,11 @@ private:
             w = static_cast<uint64_t>(l->right - l->left);
             h = static_cast<uint64_t>(l->bottom - l->top);
         }
-        const uint64_t d = std::max<uint64_t>(1, o.depth >> l->level);
+        uint64_t d = std::max<uint64_t>(1, o.depth >> l->level);
+        if (!l->whole && o.kind == Object::Kind::VolumeTexture) {
+            if (l->front < 0 || l->back <= l->front || static_cast<uint64_t>(l->back) > d) throw Skip{"a locked box outside the level"};
+            d = static_cast<uint64_t>(l->back - l->front);
+        }
         const uint64_t row = compressed ? (w + 3) / 4 * info->bytes : w * info->bytes;
         const uint64_t rows = compressed ? (h + 3) / 4 : h;
         const bool volume = o.kind == Object::Kind::VolumeTexture;
@@ -886,6 +909,9 @@ private:
         std::vector<cs::Value> args{ident(o.name)};
         if (volume) {
             args.push_back(integer(l->level));
+            if (!l->whole)
+                args.push_back(tuple({integer(l->left), integer(l->top), integer(l->front), integer(l->right),
+                                      integer(l->bottom), integer(l->back)}));
             args.push_back(blob(std::move(tight), cs::BlobType::Hex));
             emit("LockBox", std::move(args));
             return true;

@@ -9,7 +9,7 @@ namespace sm2::runtime::cs {
 namespace {
 
 // Binary ids are positions in this list plus kFirstCallId: append only, never reorder.
-constexpr std::array<std::string_view, 67> kCallNames = {
+constexpr std::array<std::string_view, 68> kCallNames = {
     "CreateDevice", "CreateVertexBuffer", "CreateIndexBuffer", "CreateTexture",
     "CreateCubeTexture", "CreateVolumeTexture", "CreateRenderTarget",
     "CreateDepthStencilSurface", "CreateVertexDeclaration", "CreateVertexShader",
@@ -25,7 +25,7 @@ constexpr std::array<std::string_view, 67> kCallNames = {
     "GetRenderTargetData", "CreateOffscreenPlainSurface", "SetSoftwareVertexProcessing", "SetNPatchMode",
     "CreateStateBlock", "BeginStateBlock", "EndStateBlock", "Capture", "Apply", "SetGammaRamp",
     "SetFVF", "SetTransform", "MultiplyTransform", "SetMaterial", "SetLight", "LightEnable",
-    "SetTextureStageState",
+    "SetTextureStageState", "Reset",
 };
 
 constexpr uint16_t kCommentId = 0;

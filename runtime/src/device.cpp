@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cctype>
 #include <cstring>
 #include <exception>
 #include <filesystem>
 #include <new>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -68,18 +70,26 @@ const char* call_error_name(CallError error) {
     return "D3DERR_INVALIDCALL";
 }
 
+namespace {
+
+// The D3D9 defaults of the render states RenderState does not model (the fixed-function and
+// tessellation ones state blocks capture): LIGHTING, COLORVERTEX, LOCALVIEWER TRUE,
+// DIFFUSEMATERIALSOURCE COLOR1, SPECULARMATERIALSOURCE COLOR2, POSITIONDEGREE CUBIC,
+// NORMALDEGREE LINEAR, MIN/MAXTESSELLATIONLEVEL and ADAPTIVETESS_Z 1.0f; the others 0.
+std::map<uint32_t, uint32_t> default_other_render_states() {
+    return {{137, 1}, {139, 0}, {141, 1}, {142, 1}, {143, 0}, {145, 1}, {146, 2},
+                            {147, 0}, {148, 0}, {151, 0}, {163, 0}, {167, 0}, {170, 0}, {172, 3},
+                            {173, 1}, {178, 0x3F800000}, {179, 0x3F800000}, {180, 0}, {181, 0},
+                            {182, 0x3F800000}, {183, 0}, {184, 0}};
+}
+
+}  // namespace
+
 Device::Device(DeviceOptions options) : options_(std::move(options)) {
     vs_f_.assign(kMaxVertexShaderConstantsF, {0.0f, 0.0f, 0.0f, 0.0f});
     ps_f_.assign(kMaxPixelShaderConstantsF, {0.0f, 0.0f, 0.0f, 0.0f});
     if (options_.threads == 0) options_.threads = 1;
-    // The D3D9 defaults of the render states RenderState does not model (the fixed-function and
-    // tessellation ones state blocks capture): LIGHTING, COLORVERTEX, LOCALVIEWER TRUE,
-    // DIFFUSEMATERIALSOURCE COLOR1, SPECULARMATERIALSOURCE COLOR2, POSITIONDEGREE CUBIC,
-    // NORMALDEGREE LINEAR, MIN/MAXTESSELLATIONLEVEL and ADAPTIVETESS_Z 1.0f; the others 0.
-    other_render_states_ = {{137, 1}, {139, 0}, {141, 1}, {142, 1}, {143, 0}, {145, 1}, {146, 2},
-                            {147, 0}, {148, 0}, {151, 0}, {163, 0}, {167, 0}, {170, 0}, {172, 3},
-                            {173, 1}, {178, 0x3F800000}, {179, 0x3F800000}, {180, 0}, {181, 0},
-                            {182, 0x3F800000}, {183, 0}, {184, 0}};
+    other_render_states_ = default_other_render_states();
     sampler_.set_precision(options_.filter_precision);
     sampler_.set_block_path(!options_.reference_paths);
 }
@@ -123,14 +133,66 @@ Surface* Device::render_target_surface(unsigned index) const {
 // ---------------------------------------------------------------------------------------------
 // Resources
 
+namespace {
+
+// CreateDevice's and Reset's checks of the presentation parameters.
+std::optional<std::string> back_buffer_error(const char* call, uint32_t width, uint32_t height, Format format) {
+    if (width == 0 || height == 0 || width > Texture::kMaxSize2D || height > Texture::kMaxSize2D)
+        return std::string(call) + ": back buffer size " + std::to_string(width) + "x" + std::to_string(height) +
+               " is out of range";
+    if (!is_render_target_format(format)) return std::string(call) + ": " + format_name(format) + " is not a render-target format";
+    return std::nullopt;
+}
+
+}  // namespace
+
+CallResult Device::reset(uint32_t width, uint32_t height, Format format, std::optional<Format> depth_format) {
+    if (!created_) return CallResult::fail("Reset: no device (CreateDevice)");
+    if (auto error = back_buffer_error("Reset", width, height, format)) return CallResult::fail(*error);
+    if (depth_format && !depth_format_info(*depth_format))
+        return CallResult::fail("Reset: " + format_name(*depth_format) + " is not a depth format");
+    // D3D9: "all ... resources in D3DPOOL_DEFAULT must be released before calling Reset".
+    std::string held;
+    for (const auto& [name, r] : resources_) {
+        if (r == back_buffer_ || name == "autodepth") continue;
+        const bool default_pool = r->kind == Resource::Kind::DepthStencil ||
+                                  ((r->kind == Resource::Kind::Texture || r->kind == Resource::Kind::RenderTarget) &&
+                                   r->pool_of() == Pool::Default);
+        if (default_pool) held += (held.empty() ? "'" : ", '") + name + "'";
+    }
+    if (!held.empty()) return CallResult::fail("Reset: DEFAULT-pool resources are not released: " + held);
+    if (recording_) return CallResult::fail("Reset: inside BeginStateBlock/EndStateBlock");
+    // The back buffer and the automatic depth surface go; every state and binding returns to its
+    // default; CreateDevice makes the new buffers and the viewport and scissor rectangle covering them.
+    for (const char* name : {"backbuffer", "autodepth"})
+        if (auto it = resources_.find(name); it != resources_.end()) {
+            memory_used_ -= it->second->memory_bytes;
+            resources_.erase(it);
+        }
+    render_state_ = RenderState::defaults(false);
+    sampler_states_ = {};
+    textures_ = {};
+    render_targets_ = {};
+    depth_stencil_ = back_buffer_ = declaration_ = vertex_shader_ = pixel_shader_ = indices_ = nullptr;
+    streams_ = {};
+    std::fill(vs_f_.begin(), vs_f_.end(), std::array<float, 4>{});
+    std::fill(ps_f_.begin(), ps_f_.end(), std::array<float, 4>{});
+    vs_flow_ = {};
+    ps_flow_ = {};
+    clip_planes_ = {};
+    fixed_function_ = {};
+    other_render_states_ = default_other_render_states();
+    in_scene_ = false;
+    created_ = false;
+    CallResult created = create_device(width, height, format, depth_format);
+    if (!created.ok && created.error.starts_with("CreateDevice")) created.error.replace(0, 12, "Reset");
+    return created;
+}
+
 CallResult Device::create_device(uint32_t width, uint32_t height, Format format,
                                  std::optional<Format> depth_format) {
     if (created_) return CallResult::fail("CreateDevice: the device already exists");
-    if (width == 0 || height == 0 || width > Texture::kMaxSize2D || height > Texture::kMaxSize2D)
-        return CallResult::fail("CreateDevice: back buffer size " + std::to_string(width) + "x" +
-                                std::to_string(height) + " is out of range");
-    if (!is_render_target_format(format))
-        return CallResult::fail("CreateDevice: " + format_name(format) + " is not a render-target format");
+    if (auto error = back_buffer_error("CreateDevice", width, height, format)) return CallResult::fail(*error);
     if (resources_.count("backbuffer") || (depth_format && resources_.count("autodepth")))
         return CallResult::fail("CreateDevice: the names 'backbuffer'/'autodepth' are taken");
     const uint64_t back_bytes = texture_bytes(format, width, height, 1, 1, 1);
@@ -421,6 +483,42 @@ std::optional<std::string> lock_error(const char* call, const std::string& name,
     return std::nullopt;
 }
 
+// LockRect of a lockable depth surface (D16_LOCKABLE: 16-bit unsigned values, D32F_LOCKABLE:
+// 32-bit floats, as stored; D3D9 locks no other depth format). `rect` null: the whole surface.
+CallResult lock_depth(const std::string& name, DepthStencilSurface& ds, const PixelRect* rect,
+                      std::span<const std::byte> data) {
+    const Format format = ds.format();
+    if (format != Format::D16_LOCKABLE && format != Format::D32F_LOCKABLE)
+        return CallResult::fail("LockRect: '" + name + "' is a " + std::string(format_info(format)->name) +
+                                " depth surface; only D16_LOCKABLE and D32F_LOCKABLE ones can be locked");
+    const PixelRect whole{0, 0, static_cast<int32_t>(ds.width()), static_cast<int32_t>(ds.height())};
+    const PixelRect& r = rect ? *rect : whole;
+    if (r.left < 0 || r.top < 0 || r.right <= r.left || r.bottom <= r.top ||
+        static_cast<uint32_t>(r.right) > ds.width() || static_cast<uint32_t>(r.bottom) > ds.height())
+        return CallResult::fail("LockRect: rectangle {" + std::to_string(r.left) + " " + std::to_string(r.top) + " " +
+                                std::to_string(r.right) + " " + std::to_string(r.bottom) + "} is not inside the " +
+                                std::to_string(ds.width()) + "x" + std::to_string(ds.height()) + " surface");
+    const size_t bytes = format == Format::D16_LOCKABLE ? 2 : 4;
+    const auto w = static_cast<size_t>(r.right - r.left), h = static_cast<size_t>(r.bottom - r.top);
+    if (data.size() != w * h * bytes)
+        return CallResult::fail("LockRect: " + std::to_string(data.size()) + " bytes given, the " +
+                                (rect ? "rectangle" : "surface") + " holds " + std::to_string(w * h * bytes));
+    for (size_t y = 0; y < h; ++y)
+        for (size_t x = 0; x < w; ++x) {
+            uint32_t value = 0;
+            if (bytes == 2) {
+                uint16_t v16;
+                std::memcpy(&v16, data.data() + (y * w + x) * 2, 2);
+                value = v16;
+            } else {
+                std::memcpy(&value, data.data() + (y * w + x) * 4, 4);
+            }
+            ds.set_stored_depth(static_cast<uint32_t>(r.left) + static_cast<uint32_t>(x),
+                                static_cast<uint32_t>(r.top) + static_cast<uint32_t>(y), value);
+        }
+    return {};
+}
+
 }  // namespace
 
 CallResult Device::lock_rect(const std::string& texture, uint32_t face, uint32_t level,
@@ -429,6 +527,10 @@ CallResult Device::lock_rect(const std::string& texture, uint32_t face, uint32_t
     if (!r) return CallResult::fail("LockRect: no resource named '" + texture + "'");
     if (auto error = lock_error("LockRect", texture, *r)) return CallResult::fail(*error);
     Surface* target = nullptr;
+    if (r->kind == Resource::Kind::DepthStencil) {
+        if (face != 0 || level != 0) return CallResult::fail("LockRect: a depth surface has one level");
+        return lock_depth(texture, *r->depth, nullptr, data);
+    }
     if (r->kind == Resource::Kind::RenderTarget) {
         if (face != 0 || level != 0) return CallResult::fail("LockRect: a render target has one level");
         target = &r->surface;
@@ -452,6 +554,7 @@ CallResult Device::lock_rect(const std::string& texture, uint32_t face, uint32_t
     if (!r) return CallResult::fail("LockRect: no resource named '" + texture + "'");
     if (auto error = lock_error("LockRect", texture, *r)) return CallResult::fail(*error);
     Surface* target = nullptr;
+    if (r->kind == Resource::Kind::DepthStencil && face == 0 && level == 0) return lock_depth(texture, *r->depth, &rect, data);
     if (r->kind == Resource::Kind::RenderTarget && face == 0 && level == 0) {
         target = &r->surface;
     } else if (r->kind == Resource::Kind::Texture && r->texture.type() != TextureType::Volume && face < r->texture.faces() &&
@@ -481,6 +584,16 @@ CallResult Device::lock_rect(const std::string& texture, uint32_t face, uint32_t
 }
 
 CallResult Device::lock_box(const std::string& texture, uint32_t level, std::span<const std::byte> data) {
+    return lock_box(texture, level, nullptr, data);
+}
+
+CallResult Device::lock_box(const std::string& texture, uint32_t level, const VolumeBox& box,
+                            std::span<const std::byte> data) {
+    return lock_box(texture, level, &box, data);
+}
+
+CallResult Device::lock_box(const std::string& texture, uint32_t level, const VolumeBox* box,
+                            std::span<const std::byte> data) {
     auto r = find(texture);
     if (!r) return CallResult::fail("LockBox: no resource named '" + texture + "'");
     if (r->kind != Resource::Kind::Texture || r->texture.type() != TextureType::Volume)
@@ -488,10 +601,32 @@ CallResult Device::lock_box(const std::string& texture, uint32_t level, std::spa
     if (auto error = lock_error("LockBox", texture, *r)) return CallResult::fail(*error);
     if (level >= r->texture.levels()) return CallResult::fail("LockBox: level " + std::to_string(level) + " out of range");
     Surface& target = r->texture.surface(level, 0);
-    if (data.size() != target.bytes().size())
-        return CallResult::fail("LockBox: " + std::to_string(data.size()) + " bytes given, the level holds " +
-                                std::to_string(target.bytes().size()));
-    std::copy(data.begin(), data.end(), target.bytes().begin());
+    if (!box) {
+        if (data.size() != target.bytes().size())
+            return CallResult::fail("LockBox: " + std::to_string(data.size()) + " bytes given, the level holds " +
+                                    std::to_string(target.bytes().size()));
+        std::copy(data.begin(), data.end(), target.bytes().begin());
+        return {};
+    }
+    const FormatInfo* info = format_info(target.format());
+    if (info->kind == FormatKind::Compressed) return CallResult::fail("LockBox: a box of a DXTn level");
+    const VolumeBox& b = *box;
+    if (b.right <= b.left || b.bottom <= b.top || b.back <= b.front || b.right > target.width() ||
+        b.bottom > target.height() || b.back > target.depth())
+        return CallResult::fail("LockBox: box {" + std::to_string(b.left) + " " + std::to_string(b.top) + " " +
+                                std::to_string(b.front) + " " + std::to_string(b.right) + " " + std::to_string(b.bottom) +
+                                " " + std::to_string(b.back) + "} is not inside the " + std::to_string(target.width()) +
+                                "x" + std::to_string(target.height()) + "x" + std::to_string(target.depth()) + " level");
+    const size_t row = size_t{b.right - b.left} * info->bytes;
+    const size_t rows = b.bottom - b.top, slices = b.back - b.front;
+    if (data.size() != row * rows * slices)
+        return CallResult::fail("LockBox: " + std::to_string(data.size()) + " bytes given, the box holds " +
+                                std::to_string(row * rows * slices));
+    for (size_t z = 0; z < slices; ++z)
+        for (size_t y = 0; y < rows; ++y)
+            std::memcpy(target.bytes().data() + (b.front + z) * target.slice_pitch() + (b.top + y) * target.row_pitch() +
+                            size_t{b.left} * info->bytes,
+                        data.data() + (z * rows + y) * row, row);
     return {};
 }
 
@@ -955,9 +1090,34 @@ CallResult Device::set_max_instruction_slots(uint32_t slots) {
     return CallResult::success();
 }
 
-CallResult Device::save_surface(const std::string& name, const std::string& path) {
-    const Surface* s = surface(name);
-    if (!s) return CallResult::fail("SaveSurface: '" + name + "' is not a surface or texture");
+CallResult Device::save_surface(const std::string& name, const std::string& path, uint32_t level, uint32_t face) {
+    auto r = find(name);
+    const bool texture = r && r->kind == Resource::Kind::Texture;
+    if (!r || (r->kind != Resource::Kind::RenderTarget && !texture && r->kind != Resource::Kind::DepthStencil))
+        return CallResult::fail("SaveSurface: '" + name + "' is not a surface or texture");
+    if (texture ? face >= r->texture.faces() || level >= r->texture.levels() : face != 0 || level != 0)
+        return CallResult::fail("SaveSurface: '" + name + "' has no level " + std::to_string(level) + " face " +
+                                std::to_string(face));
+    // A depth/stencil surface: depth to a float file (.exr, .raw), stencil to an 8-bit one (.png, .tga).
+    std::optional<Surface> converted;
+    if (r->kind == Resource::Kind::DepthStencil) {
+        std::string ext = std::filesystem::path(path).extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        if (ext == ".exr" || ext == ".raw") {
+            converted = depth_as_surface(*r->depth);
+        } else if (ext == ".png" || ext == ".tga") {
+            if (r->depth->info().stencil_bits == 0)
+                return CallResult::fail("SaveSurface: '" + name + "' has no stencil (" + path +
+                                        "; depth is written to .exr or .raw files)");
+            converted = stencil_as_surface(*r->depth);
+        } else {
+            return CallResult::fail("SaveSurface: " + path +
+                                    ": a depth/stencil surface is written as depth to .exr or .raw, stencil to .png or .tga");
+        }
+    }
+    const Surface& s = converted ? *converted
+                       : texture ? r->texture.surface(level, face)
+                                 : r->surface;
     // Inside the output folder only (the working folder when there is none): no absolute path,
     // no `..` or symbolic link leaving it.
     std::string error;
@@ -970,7 +1130,7 @@ CallResult Device::save_surface(const std::string& name, const std::string& path
                                  .lexically_normal()
                                  .string();
     try {
-        write_file(options_, *s, full);
+        write_file(options_, s, full);
     } catch (const std::exception& e) {
         return CallResult::fail(std::string("SaveSurface: ") + e.what());
     }

@@ -118,6 +118,26 @@ Image surface_image(const Surface& surface) {
     return image;
 }
 
+Surface depth_as_surface(const DepthStencilSurface& ds) {
+    Surface out(Format::A32B32G32R32F, ds.width(), ds.height());
+    for (uint32_t y = 0; y < ds.height(); ++y)
+        for (uint32_t x = 0; x < ds.width(); ++x) {
+            const float z = ds.depth(x, y);
+            out.write(x, y, 0, Float4{z, z, z, 1.0f});
+        }
+    return out;
+}
+
+Surface stencil_as_surface(const DepthStencilSurface& ds) {
+    Surface out(Format::A8R8G8B8, ds.width(), ds.height());
+    for (uint32_t y = 0; y < ds.height(); ++y)
+        for (uint32_t x = 0; x < ds.width(); ++x) {
+            const float s = static_cast<float>(ds.stencil(x, y)) / 255.0f;
+            out.write(x, y, 0, Float4{s, s, s, 1.0f});
+        }
+    return out;
+}
+
 void write_surface(const Surface& surface, const std::string& path) {
     if (surface.width() == 0 || surface.height() == 0) fail(path, "empty surface");
     // Checked before decoding so that an unknown extension is reported without work.

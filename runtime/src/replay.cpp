@@ -464,6 +464,12 @@ const CallSpec kCalls[] = {
          if (a.size() == 4) depth = a.format(3, "depth_format");
          return c.device.create_device(a.u32(0, "width"), a.u32(1, "height"), a.format(2, "format"), depth);
      }},
+    {"Reset", 3, 4, "width height format [depth_format]",
+     [](Context& c, const Args& a) {
+         std::optional<Format> depth;
+         if (a.size() == 4) depth = a.format(3, "depth_format");
+         return c.device.reset(a.u32(0, "width"), a.u32(1, "height"), a.format(2, "format"), depth);
+     }},
     {"CreateVertexBuffer", 2, 2, "name length",
      [](Context& c, const Args& a) {
          return c.device.create_vertex_buffer(a.identifier(0, "name"), a.u32(1, "length"));
@@ -535,9 +541,16 @@ const CallSpec kCalls[] = {
          const auto r = optional_rect(a, a.size() - 2, "rect");
          return c.device.lock_rect(name, f, level, *r, a.bytes(a.size() - 1, "data"));
      }},
-    {"LockBox", 3, 3, "texture level data",
+    {"LockBox", 3, 4, "texture level [{ left top front right bottom back }] data",
      [](Context& c, const Args& a) {
-         return c.device.lock_box(a.identifier(0, "texture"), a.u32(1, "level"), a.bytes(2, "data"));
+         if (a.size() == 3) return c.device.lock_box(a.identifier(0, "texture"), a.u32(1, "level"), a.bytes(2, "data"));
+         const Value& v = a.at(2);
+         if (v.kind != Kind::Tuple) a.wrong_kind(2, "box", "a box { left top front right bottom back }");
+         if (v.items.size() != 6)
+             a.fail(2, "box", "a box has 6 numbers (left top front right bottom back), got " + std::to_string(v.items.size()));
+         const Args n(v.items);
+         const VolumeBox box{n.u32(0, "left"), n.u32(1, "top"), n.u32(2, "front"), n.u32(3, "right"), n.u32(4, "bottom"), n.u32(5, "back")};
+         return c.device.lock_box(a.identifier(0, "texture"), a.u32(1, "level"), box, a.bytes(3, "data"));
      }},
     {"LoadTexture", 2, 3, "name \"file\" [GENERATEMIPS]",
      [](Context& c, const Args& a) {
@@ -802,8 +815,11 @@ const CallSpec kCalls[] = {
          if (!state) a.fail(1, "state", "unknown texture stage state '" + name + "'");
          return c.device.set_texture_stage_state(a.u32(0, "stage"), state->id, state_value(a, 2, *state));
      }},
-    {"SaveSurface", 2, 2, "surface \"file\"",
-     [](Context& c, const Args& a) { return c.device.save_surface(a.identifier(0, "surface"), a.string(1, "file")); }},
+    {"SaveSurface", 2, 4, "surface \"file\" [level [face]]",
+     [](Context& c, const Args& a) {
+         return c.device.save_surface(a.identifier(0, "surface"), a.string(1, "file"), a.size() > 2 ? a.u32(2, "level") : 0,
+                                      a.size() > 3 ? cube_face(a, 3) : 0);
+     }},
 };
 
 const CallSpec* find_call(std::string_view name) {

@@ -14,6 +14,9 @@ grep -q '^demo: 2 scenes (0 failed), 3 frames, [0-9.]* s replaying; probes 20/20
   || fail "summary totals: expected 2 scenes, 3 frames, probes 20/20, 6 shaders"
 grep -Eq '^01_gouraud_triangle +1 +[0-9]+\.[0-9]{3} +9/9$' <<<"$summary" || fail "no summary line for scene 01"
 grep -Eq '^02_shared_edges_stencil +2 +[0-9]+\.[0-9]{3} +11/11$' <<<"$summary" || fail "no summary line for scene 02"
+for n in 0 1 2; do
+  grep -q "^ok    trace ff_lit_cube frame $n matches Wine's" <<<"$summary" || fail "no trace line for ff_lit_cube frame $n"
+done
 grep -q "contact sheet $work/index.html" <<<"$summary" || fail "summary does not say where index.html is"
 [ -z "$(ls "$work/scenes" | grep -v -e '^01_gouraud_triangle$' -e '^02_shared_edges_stencil$' -e '^runs.tsv$')" ] \
   || fail "scenes outside the pattern were replayed: $(ls "$work/scenes")"

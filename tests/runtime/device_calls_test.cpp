@@ -4,11 +4,13 @@
 // rules worked by hand (each test says which), and the text form survives the binary form.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cstring>
 #include <string>
 #include <vector>
 
 #include "sm2/runtime/device.h"
+#include "sm2/runtime/device_inspection.h"
 #include "sm2/runtime/replay.h"
 #include "sm2/runtime/stream_assembler.h"
 
@@ -324,6 +326,124 @@ TEST_F(DeviceCalls, RecordedStateBlocksHoldOnlyTheStatesSetWhileRecording) {
 }
 
 // A stream with every new call survives the binary form: dump(pack(text)) == text.
+// LockRect of a lockable depth surface ("only lockable formats": D16_LOCKABLE, D32F_LOCKABLE)
+// writes the values as stored: D16_LOCKABLE z * 65535 as a 16-bit integer, D32F_LOCKABLE the
+// float. A D32F surface left at 1.0 but for x 0..1 at 0.25, then a quad at z 0.5 with ZFUNC
+// LESS: 0.5 < 0.25 fails (x 0, 1 stay black), 0.5 < 1 passes (x 2, 3 red, depth 0.5 written).
+TEST_F(DeviceCalls, LockRectWritesLockableDepthSurfaces) {
+    std::string quad = "u32[";
+    for (int i = 0; i < 4; ++i) {  // strip corners (0,0) (4,0) (0,1) (4,1), rhw 1
+        for (float v : {i % 2 ? 4.0f : 0.0f, i / 2 ? 1.0f : 0.0f, 0.5f, 1.0f}) quad += ' ' + std::to_string(std::bit_cast<uint32_t>(v));
+        quad += " 4294901760";  // diffuse 0xFFFF0000
+    }
+    quad += " ]";
+    ok("CreateDevice 4 1 A8R8G8B8\n"
+       "CreateDepthStencilSurface z 4 1 D32F_LOCKABLE\n"
+       "SetDepthStencilSurface z\n"
+       "LockRect z 0 f32[ 1 1 1 1 ]\n"
+       "LockRect z 0 { 0 0 2 1 } f32[ 0.25 0.25 ]\n"
+       "SetRenderState ZENABLE TRUE\n"
+       "SetRenderState ZFUNC LESS\n"
+       "Clear TARGET 0xFF000000 1 0\n"
+       "SetFVF { XYZRHW DIFFUSE }\n"
+       "BeginScene\n"
+       "DrawPrimitiveUP TRIANGLESTRIP 2 20 " + quad + "\n"
+       "EndScene\n");
+    const DepthStencilSurface* z = device.depth_stencil("z");
+    ASSERT_NE(z, nullptr);
+    for (uint32_t x = 0; x < 4; ++x) {
+        EXPECT_EQ(texel("backbuffer", x, 0), x < 2 ? 0xFF000000u : 0xFFFF0000u) << x;
+        EXPECT_EQ(z->depth(x, 0), x < 2 ? 0.25f : 0.5f) << x;
+    }
+    ok("CreateDepthStencilSurface d 2 2 D16_LOCKABLE\n"
+       "LockRect d 0 u16[ 0 65535 0 0 ]\n"
+       "LockRect d 0 { 1 1 2 2 } u16[ 32768 ]\n");
+    const DepthStencilSurface* d = device.depth_stencil("d");
+    ASSERT_NE(d, nullptr);
+    EXPECT_EQ(d->depth(1, 0), 1.0f);
+    EXPECT_EQ(d->stored_depth(1, 1), 32768u);
+    EXPECT_EQ(d->depth(1, 1), 32768.0f / 65535.0f);
+    EXPECT_EQ(d->depth(0, 1), 0.0f);
+    ok("CreateDepthStencilSurface ds 2 2 D24S8\n");
+    refused_with("LockRect ds 0 u32[ 0 0 0 0 ]", "only D16_LOCKABLE and D32F_LOCKABLE ones can be locked");
+    refused_with("LockRect d 0 u16[ 0 0 0 ]", "6 bytes given, the surface holds 8");
+    refused_with("LockRect d 0 { 1 1 3 2 } u16[ 0 0 ]", "is not inside the 2x2 surface");
+    refused_with("LockRect d 1 u16[ 0 0 0 0 ]", "a depth surface has one level");
+}
+
+// LockBox with a D3DBOX (right, bottom, back exclusive) writes only the box's texels: in a 2x2x2
+// A8R8G8B8 volume filled with 1..8 (texel x + 2y + 4z holds x + 2y + 4z + 1), the box
+// { 1 0 1 2 2 2 } is texels (1,0,1) and (1,1,1), bytes 5*4 and 7*4.
+TEST_F(DeviceCalls, LockBoxOfABoxWritesOnlyThatBox) {
+    ok("CreateVolumeTexture v 2 2 2 1 A8R8G8B8\n"
+       "LockBox v 0 u32[ 1 2 3 4 5 6 7 8 ]\n"
+       "LockBox v 0 { 1 0 1 2 2 2 } u32[ 0xAA 0xBB ]\n");
+    const Surface* level = device.surface("v");
+    ASSERT_NE(level, nullptr);
+    ASSERT_EQ(level->bytes().size(), 32u);
+    std::vector<uint32_t> texels(8);
+    std::memcpy(texels.data(), level->bytes().data(), 32);
+    EXPECT_EQ(texels, (std::vector<uint32_t>{1, 2, 3, 4, 5, 0xAA, 7, 0xBB}));
+    refused_with("LockBox v 0 { 1 0 1 3 2 2 } u32[ 0 0 ]", "box {1 0 1 3 2 2} is not inside the 2x2x2 level");
+    refused_with("LockBox v 0 { 0 0 0 1 1 1 } u32[ 0 0 ]", "8 bytes given, the box holds 4");
+    refused_with("LockBox v 0 { 0 0 0 1 1 } u32[ 0 ]", "a box has 6 numbers");
+}
+
+// IDirect3DDevice9::Reset: refused (D3DERR_INVALIDCALL) while a DEFAULT-pool resource is alive
+// (here a render target, then a DEFAULT texture), the replay going on; once they are released
+// the back buffer and automatic depth surface are 6x2 (and D16), every state and binding is
+// back to its default (ZENABLE TRUE with an automatic depth surface, CULLMODE CCW, MINFILTER
+// POINT, constants 0, no texture, the new back buffer as render target 0), and viewport and
+// scissor rectangle cover 6x2. MANAGED resources live on.
+TEST_F(DeviceCalls, ResetRecreatesTheBackBufferAndRestoresDefaults) {
+    ok("CreateDevice 4 4 A8R8G8B8 D24S8\n"
+       "CreateRenderTarget rt 2 2 A8R8G8B8\n"
+       "CreateTexture def 2 2 1 A8R8G8B8 RENDERTARGET\n"
+       "CreateTexture tex 2 2 1 A8R8G8B8\n"
+       "SetTexture 0 tex\n"
+       "SetRenderState CULLMODE NONE\n"
+       "SetRenderState ZENABLE FALSE\n"
+       "SetSamplerState 0 MINFILTER LINEAR\n"
+       "SetPixelShaderConstantF 1 f32[ 1 2 3 4 ]\n"
+       "SetViewport 1 1 2 2 0 1\n");
+    refused_with("Reset 6 2 X8R8G8B8 D16", "Reset: DEFAULT-pool resources are not released: 'def', 'rt'");
+    ok("Release rt\n");
+    refused_with("Reset 6 2 X8R8G8B8 D16", "Reset: DEFAULT-pool resources are not released: 'def'");
+    EXPECT_EQ(device.viewport(), (Viewport{1, 1, 2, 2, 0.0f, 1.0f}));  // refused: nothing changed
+    ok("Release def\nReset 6 2 X8R8G8B8 D16\n");
+    const Surface* back = device.surface("backbuffer");
+    ASSERT_NE(back, nullptr);
+    EXPECT_EQ(back->width(), 6u);
+    EXPECT_EQ(back->height(), 2u);
+    EXPECT_EQ(back->format(), Format::X8R8G8B8);
+    const DepthStencilSurface* depth = device.depth_stencil("autodepth");
+    ASSERT_NE(depth, nullptr);
+    EXPECT_EQ(depth->format(), Format::D16);
+    EXPECT_EQ(depth->width(), 6u);
+    EXPECT_EQ(device.viewport(), (Viewport{0, 0, 6, 2, 0.0f, 1.0f}));
+    EXPECT_EQ(device.scissor_rect(), (PixelRect{0, 0, 6, 2}));
+    EXPECT_EQ(device.render_state().cull_mode, CullMode::CCW);
+    EXPECT_EQ(device.render_state().z_enable, ZBufferType::True);
+    EXPECT_EQ(device.sampler_state(0).min_filter, TextureFilter::Point);
+    EXPECT_EQ(device.pixel_shader_constant_f(1)[0], 0.0f);
+    const DeviceInspection state = device.inspect();
+    EXPECT_FALSE(state.textures[0].has_value());
+    EXPECT_EQ(state.render_targets[0], back);
+    EXPECT_EQ(state.depth_stencil, depth);
+    EXPECT_TRUE(device.has_resource("tex"));
+    ok("Reset 2 2 A8R8G8B8\n");  // no automatic depth surface: ZENABLE FALSE
+    EXPECT_FALSE(device.has_resource("autodepth"));
+    EXPECT_EQ(device.render_state().z_enable, ZBufferType::False);
+    refused_with("Reset 0 2 A8R8G8B8", "Reset: back buffer size 0x2 is out of range");
+    refused_with("Reset 2 2 A8R8G8B8 A8R8G8B8", "Reset: A8R8G8B8 is not a depth format");
+    EXPECT_EQ(device.surface("backbuffer")->width(), 2u);
+}
+
+// Reset before CreateDevice has no device to reset.
+TEST_F(DeviceCalls, ResetWithoutADeviceIsRefused) {
+    refused_with("Reset 2 2 A8R8G8B8", "Reset: no device (CreateDevice)");
+}
+
 TEST_F(DeviceCalls, NewCallsRoundTripThroughTheBinaryForm) {
     const std::string text =
         "sm2cs 1\n"
@@ -344,7 +464,11 @@ TEST_F(DeviceCalls, NewCallsRoundTripThroughTheBinaryForm) {
         "EndStateBlock sb2\n"
         "Capture sb\n"
         "Apply sb2\n"
-        "SetGammaRamp 0 u16[ 0 1 2 ]\n";
+        "SetGammaRamp 0 u16[ 0 1 2 ]\n"
+        "LockBox v 0 { 1 0 1 2 2 2 } u32[ 0x000000AA 0x000000BB ]\n"
+        "SaveSurface c \"f.png\" 1 NEGATIVE_Y\n"
+        "SaveSurface ds \"d.exr\"\n"
+        "Reset 640 480 X8R8G8B8 D24S8\n";
     auto parsed = cs::parse_text(text);
     ASSERT_TRUE(parsed.ok()) << parsed.error->to_string();
     EXPECT_EQ(cs::to_text(*parsed.stream), text);

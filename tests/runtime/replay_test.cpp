@@ -550,6 +550,56 @@ TEST_F(Replay, SaveSurfaceWritesRelativeToTheOutputFolder) {
     refused_with("SaveSurface rt saved2", "argument 2 (file): expected a string");
 }
 
+// SaveSurface of a depth/stencil surface: depth as float (.exr), stencil as the integer value in
+// an 8-bit .png. Clear to z 0.25 (exact in D24: round(0.25 * (2^24-1)) / (2^24-1) is 0.25 to
+// float precision) and stencil 7.
+TEST_F(Replay, SaveSurfaceWritesDepthAndStencil) {
+    ok("CreateDepthStencilSurface ds 2 1 D24S8\n"
+       "CreateRenderTarget rt 2 1 A8R8G8B8\n"
+       "SetRenderTarget 0 rt\n"
+       "SetDepthStencilSurface ds\n"
+       "Clear { ZBUFFER STENCIL } 0 0.25 7\n"
+       "SaveSurface ds \"depth.exr\"\n"
+       "SaveSurface ds \"stencil.png\"\n");
+    const Image depth = read_image(path("depth.exr"));
+    ASSERT_EQ(depth.rgba.size(), 8u);
+    for (unsigned i = 0; i < 2; ++i)
+        EXPECT_NEAR(depth.rgba[i * 4], 0.25f, 1e-7f);
+    EXPECT_EQ(depth.rgba[3], 1.0f);
+    const Image stencil = read_image(path("stencil.png"));
+    ASSERT_EQ(stencil.rgba.size(), 8u);
+    EXPECT_EQ(std::lround(stencil.rgba[0] * 255.0f), 7);
+    EXPECT_EQ(std::lround(stencil.rgba[4] * 255.0f), 7);
+    ok("CreateDepthStencilSurface d16 1 1 D16\n");
+    refused_with("SaveSurface d16 \"s.png\"", "'d16' has no stencil");
+    refused_with("SaveSurface ds \"d.dds\"", "depth to .exr or .raw, stencil to .png or .tga");
+    refused_with("SaveSurface ds \"d.exr\" 1", "'ds' has no level 1 face 0");
+}
+
+// SaveSurface's level and face: level 1 (2x1) of a 4x2 texture filled with known bytes, and a
+// cube face by name.
+TEST_F(Replay, SaveSurfaceWritesALevelAndAFace) {
+    ok("CreateTexture t 4 2 2 A8R8G8B8\n"
+       "LockRect t 1 u32[ 0xFF336699 0x80FF0000 ]\n"
+       "CreateCubeTexture c 1 1 A8R8G8B8\n"
+       "LockRect c NEGATIVE_Y 0 u32[ 0xFF00FF00 ]\n"
+       "SaveSurface t \"level1.png\" 1\n"
+       "SaveSurface c \"face3.png\" 0 NEGATIVE_Y\n"
+       "SaveSurface c \"face0.png\" 0 0\n");
+    const Image level = read_image(path("level1.png"));
+    ASSERT_EQ(level.width, 2u);
+    ASSERT_EQ(level.height, 1u);
+    const std::vector<float> expected{0x33 / 255.0f, 0x66 / 255.0f, 0x99 / 255.0f, 1.0f,
+                                      1.0f, 0.0f, 0.0f, 0x80 / 255.0f};
+    for (size_t i = 0; i < expected.size(); ++i) EXPECT_NEAR(level.rgba[i], expected[i], 1e-6f) << i;
+    EXPECT_EQ(read_image(path("face3.png")).rgba, (std::vector<float>{0, 1, 0, 1}));
+    EXPECT_EQ(read_image(path("face0.png")).rgba, (std::vector<float>{0, 0, 0, 0}));
+    refused_with("SaveSurface t \"x.png\" 2", "'t' has no level 2 face 0");
+    refused_with("SaveSurface t \"x.png\" 0 1", "'t' has no level 0 face 1");
+    ok("CreateRenderTarget rt 1 1 A8R8G8B8\n");
+    refused_with("SaveSurface rt \"x.png\" 1", "'rt' has no level 1 face 0");
+}
+
 // SaveSurface writes inside the output folder only: absolute paths, `..` out of it and symbolic
 // links leading out are refused with the call's line, and nothing is written.
 TEST_F(Replay, SaveSurfaceStaysInsideTheOutputFolder) {

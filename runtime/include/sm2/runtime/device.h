@@ -69,6 +69,11 @@ enum class Pool : uint8_t { Default = 0, Managed = 1, SystemMem = 2, Scratch = 3
 [[nodiscard]] const char* pool_name(Pool pool);  // "DEFAULT", "MANAGED", "SYSTEMMEM", "SCRATCH"
 
 // Usage and pool of a created texture: D3DUSAGE_RENDERTARGET, D3DUSAGE_DYNAMIC, D3DPOOL.
+// D3DBOX: a part of a volume level; right, bottom and back exclusive.
+struct VolumeBox {
+    uint32_t left = 0, top = 0, front = 0, right = 0, bottom = 0, back = 0;
+};
+
 struct TextureUsage {
     bool render_target = false;
     bool dynamic = false;
@@ -144,6 +149,11 @@ public:
     // Resources
     CallResult create_device(uint32_t width, uint32_t height, Format format,
                              std::optional<Format> depth_format = std::nullopt);
+    // IDirect3DDevice9::Reset: refused (D3DERR_INVALIDCALL) while a DEFAULT-pool resource other
+    // than the back buffer and automatic depth surface is alive; otherwise those two are made
+    // again at the new size and format, every state and binding returns to its default, and the
+    // viewport and scissor rectangle cover the new back buffer.
+    CallResult reset(uint32_t width, uint32_t height, Format format, std::optional<Format> depth_format);
     CallResult create_vertex_buffer(const std::string& name, uint32_t length);
     CallResult create_index_buffer(const std::string& name, uint32_t length, Format format);
     CallResult create_texture(const std::string& name, uint32_t width, uint32_t height, uint32_t levels,
@@ -173,6 +183,9 @@ public:
     CallResult lock_rect(const std::string& texture, uint32_t face, uint32_t level,
                          std::span<const std::byte> data);
     CallResult lock_box(const std::string& texture, uint32_t level, std::span<const std::byte> data);
+    // LockBox of a part of the level (D3DBOX: right, bottom and back exclusive): `data` holds the
+    // box's texels, rows and slices tightly packed; the box must lie inside the level (not DXTn).
+    CallResult lock_box(const std::string& texture, uint32_t level, const VolumeBox& box, std::span<const std::byte> data);
     // LockRect of a part of the level: `data` holds the rectangle's texels, rows tightly packed;
     // the rectangle must lie inside the level (not for DXTn formats).
     CallResult lock_rect(const std::string& texture, uint32_t face, uint32_t level, const PixelRect& rect,
@@ -223,7 +236,10 @@ public:
     CallResult begin_scene();
     CallResult end_scene();
     CallResult present();
-    CallResult save_surface(const std::string& surface, const std::string& path);
+    // SaveSurface: a render target, a texture's level/face (volume: slice 0 of the level), or a
+    // depth/stencil surface (depth to .exr/.raw as float, stencil to .png/.tga as the integer
+    // value; depth_as_surface / stencil_as_surface in image_io.h).
+    CallResult save_surface(const std::string& surface, const std::string& path, uint32_t level = 0, uint32_t face = 0);
     // SetDeviceLimits: the instruction-slot limit that later CreateVertexShader/CreatePixelShader
     // calls validate against (0: the profile's, 256 vs / 96 ps; 1..65535 otherwise; a larger
     // value is a ps_2_x-size device). DeviceOptions::max_instruction_slots is its initial value.
@@ -315,6 +331,7 @@ public:
     struct StateSnapshot;
 
 private:
+    CallResult lock_box(const std::string& texture, uint32_t level, const VolumeBox* box, std::span<const std::byte> data);
     struct Draw;
     void select(uint32_t render_state);  // while recording a state block: the state joins it
     void select_sampler(uint32_t sampler, uint32_t type);

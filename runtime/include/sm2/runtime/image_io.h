@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "sm2/runtime/depth_stencil.h"
 #include "sm2/runtime/surface.h"
 
 namespace sm2::runtime {
@@ -79,5 +80,10 @@ enum class DiffVerdict { Pass, Warning, Failure };
 // A surface (level/face/slice 0) as float RGBA, as its format's decode gives it.
 [[nodiscard]] Image surface_image(const Surface& surface);
 void write_image(const Image& image, const std::string& path);
+// A depth/stencil surface as colour surfaces to write (SaveSurface, sm2 replay --snapshot):
+// depth as A32B32G32R32F (z, z, z, 1), the float value each texel stands for (an .exr keeps it);
+// stencil as A8R8G8B8 (s, s, s, 255)/255, so that an 8-bit .png holds the integer value s.
+[[nodiscard]] Surface depth_as_surface(const DepthStencilSurface& ds);
+[[nodiscard]] Surface stencil_as_surface(const DepthStencilSurface& ds);
 
 }  // namespace sm2::runtime
