@@ -8,6 +8,7 @@
 #include "sm2/runtime/apitrace_import.h"
 #include "sm2/runtime/replay.h"
 #include "sm2/runtime/stream_assembler.h"
+#include "sm2/runtime/stream_hlsl_compiler.h"
 #include "stream_io.h"
 
 namespace sm2::tools {
@@ -33,6 +34,7 @@ std::optional<CallWalk> walk_calls(const std::string& path, const std::string& r
     CallWalk walk;
     runtime::ReplayOptions options;
     options.assembler = runtime::stream_assembler();
+    options.hlsl_compiler = runtime::stream_hlsl_compiler();
     if (path.ends_with(".trace")) {
         namespace at = runtime::apitrace;
         walk.trace = true;

@@ -21,6 +21,7 @@
 #include "image_compare.h"
 #include "io.h"
 #include "sm2/runtime/stream_assembler.h"
+#include "sm2/runtime/stream_hlsl_compiler.h"
 #include "snapshot.h"
 #include "stream_io.h"
 #include "sm2/emu/jit.h"
@@ -42,6 +43,7 @@ runtime::ReplayOptions replay_options(const LoadedStream& loaded) {
     options.base_dir = loaded.base_dir;
     options.root_dir = loaded.root_dir;
     options.assembler = runtime::stream_assembler();
+    options.hlsl_compiler = runtime::stream_hlsl_compiler();
     return options;
 }
 
@@ -359,6 +361,7 @@ int run_replay_trace(const ReplayCliOptions& o) {
     runtime::ReplayOptions options;
     options.file_name = display_name(o.stream);
     options.assembler = runtime::stream_assembler();
+    options.hlsl_compiler = runtime::stream_hlsl_compiler();
     if (*snapshots)
         options.after_call = [&device, &snapshots](const cs::Statement& st, uint64_t call, bool accepted) {
             return (*snapshots)->after_call(device, st, call, accepted);

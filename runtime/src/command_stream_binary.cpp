@@ -37,6 +37,7 @@ constexpr int kMaxDepth = 16;
 enum Tag : uint8_t {
     kTagInteger = 0, kTagHexInteger = 1, kTagFloat = 2, kTagIdentifier = 3, kTagString = 4,
     kTagTuple = 5, kTagBlob = 6, kTagSideFile = 7, kTagHeredoc = 8,
+    kTagHlslHeredoc = 9,  // hlsl<<TAG: as kTagHeredoc, the text is HLSL
 };
 
 class Writer {
@@ -89,7 +90,7 @@ public:
             put_bytes(v.bytes.data(), v.bytes.size());
             break;
         case Value::Kind::Heredoc:
-            put(static_cast<uint8_t>(kTagHeredoc));
+            put(static_cast<uint8_t>(v.language == Value::Language::Hlsl ? kTagHlslHeredoc : kTagHeredoc));
             put_string(v.text);
             put_bytes(v.bytes.data(), v.bytes.size());
             break;
@@ -218,7 +219,9 @@ private:
         }
         case kTagSideFile:
         case kTagHeredoc:
+        case kTagHlslHeredoc:
             v.kind = tag == kTagSideFile ? Value::Kind::SideFile : Value::Kind::Heredoc;
+            if (tag == kTagHlslHeredoc) v.language = Value::Language::Hlsl;
             return (get_string(v.text) && get_bytes(v.bytes)) || value_error(at, "truncated data");
         default:
             return value_error(at, "unknown argument tag " + std::to_string(tag));

@@ -164,7 +164,7 @@ void print_value(const Value& v, std::string& out) {
     case Value::Kind::Blob: print_blob(v, out); break;
     case Value::Kind::SideFile: out += '@' + quote(v.text); break;
     case Value::Kind::Heredoc:
-        out += "asm<<" + v.text + '\n';
+        out += (v.language == Value::Language::Hlsl ? "hlsl<<" : "asm<<") + v.text + '\n';
         out.append(reinterpret_cast<const char*>(v.bytes.data()), v.bytes.size());
         out += v.text;
         break;
@@ -337,12 +337,13 @@ private:
                 if (!info) return fail("unknown blob type '" + std::string(w) + "'");
                 return parse_blob(v, *info);
             }
-            if (w == "asm" && peek() == '<' && peek(1) == '<') {
+            if ((w == "asm" || w == "hlsl") && peek() == '<' && peek(1) == '<') {
                 if (depth > 0) {
                     error_ = ParseError{options_.file_name, line_, word_column, pos_,
                                         "a heredoc can only be a call's last argument, not inside '{ }'"};
                     return false;
                 }
+                v.language = w == "hlsl" ? Value::Language::Hlsl : Value::Language::Asm;
                 return parse_heredoc(v, word_column);
             }
             v.kind = Value::Kind::Identifier;

@@ -321,12 +321,12 @@ struct Context {
     uint32_t diagnostic_line = 0;
 };
 
-isa::Program assemble_text(Context& c, const Args& args, size_t i, std::string_view text, const std::string& where) {
-    if (!c.options.assembler)
-        args.fail(i, "shader", "no assembler is available to this replay for shader text");
-    AssembledShader assembled = c.options.assembler(text, c.device.max_instruction_slots());
+// The program from an assembler's or compiler's answer, or its first error as the argument's,
+// at its line inside the heredoc.
+isa::Program translated(Context& c, const Args& args, size_t i, AssembledShader assembled, const std::string& where,
+                        const char* what) {
     if (assembled.program) return std::move(*assembled.program);
-    std::string message = assembled.error.empty() ? "the assembly has errors" : assembled.error;
+    std::string message = assembled.error.empty() ? std::string("the ") + what + " has errors" : assembled.error;
     if (assembled.line > 0) {
         message = where + " line " + std::to_string(assembled.line) + ": " + message;
         // A heredoc's text starts on the line after the call's.
@@ -335,6 +335,19 @@ isa::Program assemble_text(Context& c, const Args& args, size_t i, std::string_v
         message = where + ": " + message;
     }
     throw ArgumentError{message};
+}
+
+isa::Program assemble_text(Context& c, const Args& args, size_t i, std::string_view text, const std::string& where) {
+    if (!c.options.assembler)
+        args.fail(i, "shader", "no assembler is available to this replay for shader text");
+    return translated(c, args, i, c.options.assembler(text, c.device.max_instruction_slots()), where, "assembly");
+}
+
+isa::Program compile_hlsl(Context& c, const Args& args, size_t i, std::string_view source, isa::ShaderType stage) {
+    if (!c.options.hlsl_compiler)
+        args.fail(i, "shader", "HLSL needs sm2 compile support (no HLSL compiler is available to this replay)");
+    return translated(c, args, i, c.options.hlsl_compiler(source, stage, c.device.max_instruction_slots()), "HLSL",
+                      "HLSL");
 }
 
 isa::Program decode_bytecode(const Args& args, size_t i, std::span<const std::byte> bytes, std::string where) {
@@ -349,11 +362,13 @@ isa::Program decode_bytecode(const Args& args, size_t i, std::span<const std::by
     return std::move(*decoded.program);
 }
 
-// A shader from an asm heredoc, a side file (text or bytecode) or a blob of bytecode.
-isa::Program shader_program(Context& c, const Args& args, size_t i) {
+// A shader from an asm or hlsl heredoc, a side file (text or bytecode) or a blob of bytecode.
+isa::Program shader_program(Context& c, const Args& args, size_t i, isa::ShaderType stage) {
     const Value& v = args.at(i);
     switch (v.kind) {
     case Kind::Heredoc:
+        if (v.language == Value::Language::Hlsl)
+            return compile_hlsl(c, args, i, {reinterpret_cast<const char*>(v.bytes.data()), v.bytes.size()}, stage);
         return assemble_text(c, args, i, {reinterpret_cast<const char*>(v.bytes.data()), v.bytes.size()}, "assembly");
     case Kind::SideFile: {
         const std::string where = "\"" + v.text + "\"";
@@ -363,7 +378,7 @@ isa::Program shader_program(Context& c, const Args& args, size_t i) {
     case Kind::Blob: return decode_bytecode(args, i, v.bytes, "");
     default: break;
     }
-    args.wrong_kind(i, "shader", "asm<<TAG text, a side file or a u32[] blob of bytecode");
+    args.wrong_kind(i, "shader", "asm<<TAG or hlsl<<TAG text, a side file or a u32[] blob of bytecode");
 }
 
 // A LoadTexture file name, inside the read root (refused otherwise, as argument `i`).
@@ -452,7 +467,7 @@ constexpr size_t kMany = std::numeric_limits<size_t>::max();
 
 CallResult create_shader(Context& c, const Args& a, bool vertex) {
     const std::string& name = a.identifier(0, "name");
-    isa::Program program = shader_program(c, a, 1);
+    isa::Program program = shader_program(c, a, 1, vertex ? isa::ShaderType::Vertex : isa::ShaderType::Pixel);
     return vertex ? c.device.create_vertex_shader(name, std::move(program))
                   : c.device.create_pixel_shader(name, std::move(program));
 }

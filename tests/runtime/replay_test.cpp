@@ -267,7 +267,7 @@ TEST_F(Replay, BadAssemblyNamesTheLineInsideTheHeredoc) {
 TEST_F(Replay, BadBytecodeAndMissingAssembler) {
     refused_with("CreatePixelShader p u32[ 0xFFFF0200 0x05000001 0x0000FFFF ]", "argument 2 (shader): bytecode token");
     refused_with("CreatePixelShader p u8[ 1 2 3 ]", "3 bytes is not a whole number of tokens");
-    refused_with("CreatePixelShader p \"ps.asm\"", "expected asm<<TAG text, a side file or a u32[] blob");
+    refused_with("CreatePixelShader p \"ps.asm\"", "expected asm<<TAG or hlsl<<TAG text, a side file or a u32[] blob");
 
     Replayer bare(device());  // no assembler given
     cs::Statement st;

@@ -27,8 +27,9 @@ struct Value {
         Tuple,       // { ... }
         Blob,        // f32[ ... ]
         SideFile,    // @"path": bytes loaded from a file beside the stream
-        Heredoc,     // asm<<TAG ... TAG
+        Heredoc,     // asm<<TAG ... TAG, hlsl<<TAG ... TAG
     };
+    enum class Language : uint8_t { Asm, Hlsl };  // a Heredoc's text
     Kind kind = Kind::Integer;
     int64_t integer = 0;          // Integer (-2^31 .. 2^32-1)
     bool hex = false;             // Integer written in hex
@@ -37,6 +38,7 @@ struct Value {
     std::vector<Value> items;     // Tuple
     BlobType blob_type = BlobType::U8;  // Blob
     std::vector<std::byte> bytes; // Blob, SideFile content, Heredoc text
+    Language language = Language::Asm;  // Heredoc
 
     [[nodiscard]] float as_float() const;
     friend bool operator==(const Value&, const Value&) = default;

@@ -33,6 +33,11 @@ struct AssembledShader {
     uint32_t line = 0;  // its 1-based line in the assembly text (0: none)
 };
 using ShaderAssembler = std::function<AssembledShader(std::string_view text, unsigned max_instruction_slots)>;
+// HLSL source (entry point main) -> program for `stage` (vs_2_0/ps_2_0), for hlsl<<TAG heredocs;
+// the runtime does not link the HLSL compiler (glslang), so whoever replays hands one in:
+// sm2/runtime/stream_hlsl_compiler.h. `line` in the answer is the line in the HLSL text.
+using ShaderCompiler =
+    std::function<AssembledShader(std::string_view source, isa::ShaderType stage, unsigned max_instruction_slots)>;
 
 struct ReplayDiagnostic {
     std::string file;
@@ -62,6 +67,7 @@ struct ReplayOptions {
     // stay inside DeviceOptions::output_dir.
     std::string root_dir;
     ShaderAssembler assembler;          // empty: asm heredocs are refused
+    ShaderCompiler hlsl_compiler;       // empty: hlsl heredocs are refused
     // Called after each statement with (statements done, total) during replay(); may be empty.
     std::function<void(size_t, size_t)> progress;
     // replay() records each draw's work in ReplayResult::draws (sm2 replay --stats); off, it

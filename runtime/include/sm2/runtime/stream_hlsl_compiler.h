@@ -1,0 +1,45 @@
+// HLSL shader text in a command stream (hlsl<<END heredocs) goes through the HLSL compiler
+// (sm2/hlsl/compiler.h: glslang, SPIRV-Tools and sm2's back end); the runtime does not link it,
+// so whoever replays hands this adaptor in as ReplayOptions::hlsl_compiler: the sm2 tool, the
+// tests. Header-only for that reason: a program that includes it links sm2_hlsl as well.
+//
+//   sm2::runtime::ReplayOptions options;
+//   options.hlsl_compiler = sm2::runtime::stream_hlsl_compiler();
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "sm2/hlsl/compiler.h"
+#include "sm2/runtime/replay.h"
+
+namespace sm2::runtime {
+
+// Entry point `main`, profile vs_2_0 or ps_2_0 from the call (CreateVertexShader,
+// CreatePixelShader). The compiler checks the profile's own limits (a lower device limit,
+// SetDeviceLimits or --max-slots, is not applied to HLSL yet). A failure reports the first
+// error, at its line in the HLSL text.
+inline ShaderCompiler stream_hlsl_compiler() {
+    return [](std::string_view source, isa::ShaderType stage, unsigned /*max_instruction_slots*/) {
+        hlsl::CompileOptions options;
+        options.file_name = "hlsl";
+        options.stage = stage;
+        auto compiled = hlsl::compile(source, options);
+        AssembledShader out;
+        for (const auto& d : compiled.diagnostics)
+            if (d.severity == assembler::Severity::Error) {
+                out.error = d.message;
+                out.line = d.line;
+                return out;
+            }
+        if (!compiled.program) {
+            out.error = "the HLSL does not compile";
+            return out;
+        }
+        out.program = std::move(compiled.program);
+        return out;
+    };
+}
+
+}  // namespace sm2::runtime
