@@ -57,18 +57,25 @@ constexpr bool transcendental(Opcode op) {
 
 // --- fetch: one source into a scratch vector, channels of s.channels only ---------------------
 
+// A register of the batch (or, in compiled code, a temporary kept out of it: jit/compiler.cpp).
 template <typename Real>
-inline void fetch_lanes(Vector<Real>& dst, const BasicBatch<Real>& batch, unsigned slot, unsigned swizzle,
-                        bool negate, unsigned channels) {
+inline void fetch_register(Vector<Real>& dst, const Vector<Real>& reg, unsigned swizzle, bool negate,
+                           unsigned channels) {
     for (unsigned c = 0; c < 4; ++c) {
         if (!has(channels, c)) continue;
-        const Lanes<Real>& in = batch.registers[slot][component(swizzle, c)];
+        const Lanes<Real>& in = reg[component(swizzle, c)];
         Lanes<Real>& out = dst[c];
         if (negate)
             for (unsigned l = 0; l < N; ++l) out[l] = -in[l];
         else
             out = in;
     }
+}
+
+template <typename Real>
+inline void fetch_lanes(Vector<Real>& dst, const BasicBatch<Real>& batch, unsigned slot, unsigned swizzle,
+                        bool negate, unsigned channels) {
+    fetch_register(dst, batch.registers[slot], swizzle, negate, channels);
 }
 
 template <typename Real>
@@ -346,8 +353,7 @@ inline void texture(Vector<Real>& result, const Vector<Real>& a, const BasicBatc
 // The result channels of the mask, saturated (_sat), rounded to the precision mode and with NaN
 // made canonical (numerics.h), into the destination slot.
 template <typename Real>
-inline void store(BasicBatch<Real>& batch, unsigned slot, Vector<Real>& r, unsigned mask, bool saturate,
-                  ResultRounding rounding) {
+inline void store_register(Vector<Real>& reg, Vector<Real>& r, unsigned mask, bool saturate, ResultRounding rounding) {
     for (unsigned c = 0; c < 4; ++c) {
         if (!has(mask, c)) continue;
         Lanes<Real>& v = r[c];
@@ -360,8 +366,14 @@ inline void store(BasicBatch<Real>& batch, unsigned slot, Vector<Real>& r, unsig
             for (unsigned l = 0; l < N; ++l) v[l] = num::round_result(v[l], ResultRounding::Fp16);
         if (!saturate)  // (a saturated value is never NaN)
             for (unsigned l = 0; l < N; ++l) v[l] = num::canonical_nan(v[l]);
-        batch.registers[slot][c] = v;
+        reg[c] = v;
     }
+}
+
+template <typename Real>
+inline void store(BasicBatch<Real>& batch, unsigned slot, Vector<Real>& r, unsigned mask, bool saturate,
+                  ResultRounding rounding) {
+    store_register(batch.registers[slot], r, mask, saturate, rounding);
 }
 
 }  // namespace sm2::emu::kernels

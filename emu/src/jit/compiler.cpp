@@ -8,7 +8,8 @@
 // opcode and the store kernel, with the step's fields as constant arguments and scratch vectors
 // on the stack (the interpreter's src_/result_). A short pass pipeline then inlines the kernels
 // and folds the constants (the tests of masks, swizzles, negates, roundings disappear), keeps the
-// scratch vectors in registers and forwards values from step to step; the code generator
+// scratch vectors and the temporaries (a function-local array, never stored to the batch) in
+// registers and forwards values from step to step; the code generator
 // targets the host CPU (AVX-512 where there is one).
 //
 // Bit-identity with the interpreter (compiled by the C++ compiler of the build):
@@ -29,6 +30,7 @@
 #include <chrono>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -313,6 +315,22 @@ public:
         auto* vector_type = llvm::ArrayType::get(llvm::Type::getFloatTy(context_), 4 * kBatchLanes);
         for (auto*& scratch : sources_) scratch = new_scratch(vector_type);
         result_ = new_scratch(vector_type);
+        // The temporaries live in the function (registers, after SROA), not in the batch: only
+        // the outputs, a0 and the killed lanes are a run's results, and stores nothing else reads
+        // would cost a fifth of the code. A temporary read anywhere starts as the batch holds it
+        // (valid shaders write every temp before reading it; the copies of the others fold away).
+        temps_ = new_scratch(llvm::ArrayType::get(vector_type, slot::kTempCount));
+        std::array<bool, slot::kTempCount> read{};
+        for (const Step& step : executable.steps())
+            for (unsigned k = 0; k < step.source_count && k < step.sources.size(); ++k)
+                if (step.sources[k].kind == OperandKind::Lanes && step.sources[k].index < slot::kTempFirst + slot::kTempCount &&
+                    step.sources[k].index >= slot::kTempFirst)
+                    read[step.sources[k].index - slot::kTempFirst] = true;
+        for (unsigned t = 0; t < slot::kTempCount; ++t)
+            if (read[t])
+                builder.CreateMemCpy(register_pointer(slot::kTempFirst + t), llvm::MaybeAlign(64),
+                                     batch_register(slot::kTempFirst + t), llvm::MaybeAlign(64),
+                                     sizeof(Batch::Register));
 
         defs_.clear();
         std::map<unsigned, std::array<float, 4>> values;
@@ -336,6 +354,25 @@ private:
     }
 
     llvm::Value* u32(unsigned value) { return builder_->getInt32(value); }
+
+    // Register `slot` of the batch.
+    llvm::Value* batch_register(unsigned slot) {
+        static const size_t registers = [] {
+            const auto batch = std::make_unique<Batch>();
+            return static_cast<size_t>(reinterpret_cast<const char*>(&batch->registers) -
+                                       reinterpret_cast<const char*>(batch.get()));
+        }();
+        return builder_->CreateConstInBoundsGEP1_64(builder_->getInt8Ty(), batch_,
+                                                    registers + size_t{slot} * sizeof(Batch::Register));
+    }
+
+    // Where the step reads and writes register `slot`: the function's own copy of a temporary,
+    // the batch for every other register.
+    llvm::Value* register_pointer(unsigned slot) {
+        if (slot >= slot::kTempFirst && slot < slot::kTempFirst + slot::kTempCount)
+            return builder_->CreateConstInBoundsGEP2_32(temps_->getAllocatedType(), temps_, 0, slot - slot::kTempFirst);
+        return batch_register(slot);
+    }
 
     // A private constant [4 x float] holding `value`.
     llvm::Value* def_global(const std::array<float, 4>& value) {
@@ -367,8 +404,8 @@ private:
         switch (s.kind) {
         case OperandKind::Lanes:
             if (s.index >= kSlotCount) return "source slot out of range";
-            return call("sm2_k_fetch_lanes",
-                        {scratch, batch_, u32(s.index), u32(s.swizzle), u32(s.negate), u32(s.channels)});
+            return call("sm2_k_fetch_register",
+                        {scratch, register_pointer(s.index), u32(s.swizzle), u32(s.negate), u32(s.channels)});
         case OperandKind::Constant:
             // A def'd register holds its def value in every constant file the executable binds,
             // so it is read from a constant in the module: the kernels' special-value tests on
@@ -424,8 +461,8 @@ private:
         }
         }
         if (step.dest.slot >= kSlotCount) return "destination slot out of range";
-        return call("sm2_k_store", {batch_, u32(step.dest.slot), result_, u32(mask), u32(step.dest.saturate),
-                                    u32(static_cast<unsigned>(step.dest.rounding))});
+        return call("sm2_k_store_register", {register_pointer(step.dest.slot), result_, u32(mask),
+                                             u32(step.dest.saturate), u32(static_cast<unsigned>(step.dest.rounding))});
     }
 
     llvm::Module& module_;
@@ -441,6 +478,7 @@ private:
     std::map<unsigned, llvm::Value*> defs_;  // def'd register -> its value as a module constant
     std::array<llvm::AllocaInst*, 3> sources_{};
     llvm::AllocaInst* result_ = nullptr;
+    llvm::AllocaInst* temps_ = nullptr;  // [kTempCount x register]
 };
 
 // Reads the bodies of the kernels the shader calls (the module was loaded lazily), drops the

@@ -43,9 +43,10 @@ using sm2_sample_fn = void (*)(void* sampler, unsigned sampler_index, unsigned v
 
 extern "C" {
 
-void sm2_k_fetch_lanes(float* __restrict dst, const void* __restrict batch, unsigned slot, unsigned swizzle,
-                       unsigned negate, unsigned channels) {
-    k::fetch_lanes(vector(dst), batch_of(batch), slot, swizzle, negate != 0, channels);
+// `reg`: a register of the batch, or a temporary the compiled code keeps to itself.
+void sm2_k_fetch_register(float* __restrict dst, const float* __restrict reg, unsigned swizzle, unsigned negate,
+                          unsigned channels) {
+    k::fetch_register(vector(dst), vector(reg), swizzle, negate != 0, channels);
 }
 
 void sm2_k_fetch_constant(float* __restrict dst, const float* __restrict constants, unsigned index, unsigned swizzle,
@@ -94,9 +95,9 @@ void sm2_k_tex(float* __restrict result, const float* __restrict a, const void* 
                });
 }
 
-void sm2_k_store(void* __restrict batch, unsigned slot, float* __restrict result, unsigned mask, unsigned saturate,
-                 unsigned rounding) {
-    k::store(batch_of(batch), slot, vector(result), mask, saturate != 0, static_cast<ResultRounding>(rounding));
+void sm2_k_store_register(float* __restrict reg, float* __restrict result, unsigned mask, unsigned saturate,
+                          unsigned rounding) {
+    k::store_register(vector(reg), vector(result), mask, saturate != 0, static_cast<ResultRounding>(rounding));
 }
 
 }  // extern "C"

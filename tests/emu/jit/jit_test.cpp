@@ -103,9 +103,26 @@ public:
         const bool pixel = mode_.rounding != Rounding::Fp32 || chance(random_, 50);
         std::vector<Step> steps;
         for (unsigned i = 0; i < step_count; ++i) steps.push_back(step(pixel, i));
+        // Compiled code keeps the temporaries out of the batch, so only outputs are compared:
+        // half the executables end by copying r0..r11 into the output slots, which makes every
+        // temporary's last value a result (the others keep the outputs they wrote themselves).
+        if (chance(random_, 50))
+            for (unsigned t = 0; t < 12; ++t) {
+                Step copy;
+                copy.origin = step_count + t;
+                copy.opcode = Opcode::Mov;
+                copy.dest.slot = static_cast<uint16_t>(emu::slot::kPosition + t);
+                copy.source_count = 1;
+                copy.sources[0].kind = OperandKind::Lanes;
+                copy.sources[0].index = static_cast<uint16_t>(emu::slot::kTempFirst + t);
+                copy.sources[0].swizzle = 0xE4;
+                copy.sources[0].channels = 0xF;
+                steps.push_back(copy);
+            }
         const auto precision = mode_.rounding == Rounding::Fp24 ? emu::Precision::Fp24 : emu::Precision::Fp32;
+        const auto executed = static_cast<uint32_t>(steps.size());
         return emu::Executable(isa::ShaderVersion{pixel ? ShaderType::Pixel : ShaderType::Vertex, 2, 0}, precision,
-                               constant_count_, std::move(steps), {}, step_count, mode_.transcendentals);
+                               constant_count_, std::move(steps), {}, executed, mode_.transcendentals);
     }
 
 private:
@@ -320,11 +337,12 @@ emu::ConstantFile random_constants(Random& random, unsigned count) {
     return constants;
 }
 
-// Compares every bit; describes the first differences.
+// Compares every bit of a run's results: every register but the temporaries (compiled code
+// keeps them to itself), a0 and the killed lanes; describes the first differences.
 ::testing::AssertionResult same_batches(const emu::Batch& interpreter, const emu::Batch& jit) {
     std::ostringstream differences;
     int shown = 0;
-    for (unsigned s = 0; s < emu::slot::kCount; ++s)
+    for (unsigned s = emu::slot::kTempFirst + emu::slot::kTempCount; s < emu::slot::kCount; ++s)
         for (unsigned c = 0; c < 4; ++c)
             for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
                 const uint32_t a = std::bit_cast<uint32_t>(interpreter.registers[s][c][l]);
@@ -343,8 +361,7 @@ emu::ConstantFile random_constants(Random& random, unsigned count) {
         differences << "killed: interpreter 0x" << std::hex << interpreter.killed << ", jit 0x" << jit.killed
                     << std::dec << "\n";
     if (interpreter.lane_count != jit.lane_count) differences << "lane_count changed\n", ++shown;
-    if (shown == 0 && std::memcmp(&interpreter.registers, &jit.registers, sizeof(jit.registers)) == 0)
-        return ::testing::AssertionSuccess();
+    if (shown == 0) return ::testing::AssertionSuccess();
     return ::testing::AssertionFailure() << shown << " differences:\n" << differences.str();
 }
 

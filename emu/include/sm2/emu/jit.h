@@ -44,9 +44,12 @@ public:
     CompiledShader& operator=(const CompiledShader&) = delete;
 
     // What execute() does for the executable it was compiled from: every step over all lanes of
-    // `batch`. `sampler` may be null (texld then reads (0,0,0,1)); an exception it throws
-    // reaches the caller. std::invalid_argument when the constant file is smaller than the
-    // executable's constant count.
+    // `batch`, with the same outputs, a0 and killed lanes. The temporaries r# stay in the
+    // compiled code's registers: the batch's temps keep what they held (a temp the shader reads
+    // before writing it, which the validator refuses, starts as the batch holds it).
+    // `sampler` may be null (texld then reads (0,0,0,1)); an exception it throws reaches the
+    // caller. std::invalid_argument when the constant file is smaller than the executable's
+    // constant count.
     void run(const ConstantFile& constants, Batch& batch, Sampler* sampler = nullptr) const;
 
     // Wall time the compilation took (kernels, code generation, optimization, machine code); for
