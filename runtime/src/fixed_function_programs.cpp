@@ -426,7 +426,9 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
     if (lighting) {
         // D3D9 "Mathematics of Lighting" (camera space): colour = Ce + Ca (Ga + sum Atten La)
         // + Cd sum (Atten Ld max(N.L, 0)), specular = Cs sum (Atten Ls (N.H)^P) where N.L > 0;
-        // H = norm(norm(-P) + L) with LOCALVIEWER, norm((0, 0, 1) + L) without.
+        // H = norm(norm(-P) + L) with LOCALVIEWER, norm((0, 0, -1) + L) without: the direction
+        // to an eye infinitely far down -z, the reverse of the reflection vector's incident
+        // (0, 0, 1) below (Wine's ffp and the Windows drivers its specular tests were checked on).
         constants[kVcGlobalAmbient] = color_of(states.ambient);
         constants[kVcMaterial + 0] = rgba(ff.material.diffuse);
         constants[kVcMaterial + 1] = rgba(ff.material.ambient);
@@ -439,7 +441,7 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
             b.op(Opcode::Mov, rd(2, kXYZ), {negated(r(2))});
         } else {
             b.op(Opcode::Mov, rd(2), {c(kVcZero)});
-            b.op(Opcode::Mov, rd(2, kZ), {c(kVcOne)});
+            b.op(Opcode::Mov, rd(2, kZ), {negated(c(kVcOne))});
         }
         for (unsigned n : {3u, 4u, 5u}) b.op(Opcode::Mov, rd(n), {c(kVcZero)});
         for (size_t i = 0; i < lights.size(); ++i) {

@@ -145,10 +145,12 @@ TEST(FixedFunctionDraw, SpecularHighlightWithALocalViewer) {
     // norm(-+0.6667, -+0.6667, -1.3333), N.H = 1.3333 / 1.63299 = 0.81650; Power 2: 0.66667;
     // light specular 1, material specular 0.6: 0.4 -> 102 (0x66) with SPECULARENABLE (material
     // diffuse and ambient 0, so the specular is all there is).
-    // LOCALVIEWER off (D3D9's "Specular Lighting": H = norm((0, 0, 1) + L)): the light shining
-    // along (-0.6, 0, 0.8), L = (0.6, 0, -0.8), N = (1, 0, 0): N.L = 0.6 > 0, H = norm(0.6, 0, 0.2)
-    // = (0.94868, 0, 0.31623), N.H^2 = 0.9, 0.6 * 0.9 = 0.54 -> 137.7 -> 0x8A, the same at every
-    // vertex (with the local viewer it would differ per vertex).
+    // LOCALVIEWER off: the eye infinitely far down -z, E = (0, 0, -1), H = norm(E + L). The light
+    // shining along (-0.6, 0, 0.8), L = (0.6, 0, -0.8), N = (0.6, 0, -0.8): N.L = 1,
+    // H = norm(0.6, 0, -1.8) = (0.31623, 0, -0.94868), N.H = 0.94868, N.H^2 = 0.9,
+    // 0.6 * 0.9 = 0.54 -> 137.7 -> 0x8A, the same at every vertex (with the local viewer it would
+    // differ per vertex). With E = (0, 0, +1) (the highlight on the far side; what this code did
+    // before ff_lighting.trace showed Wine's highlight) N.H^2 = 0.1: 0x0F.
     const auto highlight = [](const char* local_viewer, const char* direction, float nx, float nz) {
         const Outcome o = replay_text(
             std::string("SetRenderState SPECULARENABLE TRUE\nSetRenderState LOCALVIEWER ") + local_viewer +
@@ -159,7 +161,7 @@ TEST(FixedFunctionDraw, SpecularHighlightWithALocalViewer) {
         return pixel(o, 1, 1);
     };
     EXPECT_EQ(highlight("TRUE", "{ 0 0 1 }", 0, -1), 0xFF666666u);
-    EXPECT_EQ(highlight("FALSE", "{ -0.6 0 0.8 }", 1, 0), 0xFF8A8A8Au);
+    EXPECT_EQ(highlight("FALSE", "{ -0.6 0 0.8 }", 0.6f, -0.8f), 0xFF8A8A8Au);
 }
 
 TEST(FixedFunctionDraw, PointLightAttenuationAndRange) {
