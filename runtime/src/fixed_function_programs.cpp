@@ -254,6 +254,11 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
     if (indexed_blend && !blend_indices) return refused("INDEXEDVERTEXBLENDENABLE: the vertex has no BLENDINDICES");
     const bool vertex_fog =
         rs.fog_enable && rs.fog_table_mode == FogMode::None && !pretransformed && rs.fog_vertex_mode != FogMode::None;
+    // Table fog under a perspective projection (any but a fourth column (0, 0, 0, 1), Wine's test
+    // too) is W-fog: of the eye-space depth, which the program passes in oFog.
+    const auto& proj = ff.projection;
+    const bool w_fog = rs.fog_enable && rs.fog_table_mode != FogMode::None && !pretransformed &&
+                       !(proj[3] == 0.0f && proj[7] == 0.0f && proj[11] == 0.0f && proj[15] == 1.0f);
     std::vector<const Light*> lights;
     if (lighting)
         for (uint32_t index : ff.enabled_lights) {
@@ -338,7 +343,7 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
         std::copy(wv.begin(), wv.end(), constants.begin() + kVcWorldView);
         b.op(Opcode::M4x4, o_pos(isa::kMaskAll), {in(kInPosition), c(kVcTransform)});
         // Camera-space position in r0 (lighting, fog and point scale read it).
-        if (lighting || vertex_fog || generates_from_position || point_scale)
+        if (lighting || vertex_fog || w_fog || generates_from_position || point_scale)
             b.op(Opcode::M4x4, rd(0), {in(kInPosition), c(kVcWorldView)});
         // Camera-space normal in r1 (lighting and texgen read it): through the inverse transpose of
         // world x view's 3x3, normalized with NORMALIZENORMALS; (0, 0, 0) when the vertex has none.
@@ -634,6 +639,10 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
         // FOGVERTEXMODE NONE (and XYZRHW vertices): the fog factor is the specular colour's
         // alpha (D3D9, "Vertex Fog"); with no specular in the vertex, no fog (factor 1).
         b.op(Opcode::Mov, o_fog, {has_specular ? in(kInSpecular, kSwizzleW) : c(kVcOne, kSwizzleW)});
+    } else if (w_fog) {
+        // W-fog: the eye-space depth (w of a perspective projection), interpolated perspective-
+        // correctly, hence exact per pixel; the merger applies FOGTABLEMODE to it.
+        b.op(Opcode::Mov, o_fog, {r(0, kSwizzleZ)});
     }
     if (has_point_size || point_scale) {
         // oPts: the vertex's PSIZE, else POINTSIZE; with POINTSCALEENABLE (D3D9 "Point Sprites")
@@ -657,7 +666,9 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
             b.op(Opcode::Mov, o_pts, {size});
         }
     }
-    return std::move(b).finish(std::move(constants));
+    FixedFunctionProgram out = std::move(b).finish(std::move(constants));
+    out.w_fog = w_fog;
+    return out;
 }
 
 namespace {

@@ -391,6 +391,32 @@ TEST(FixedFunctionDraw, TableFogOfAFixedFunctionDraw) {
     EXPECT_EQ(pixel(o, 1, 1), 0xFF9B9BFFu);
 }
 
+TEST(FixedFunctionDraw, TableFogUnderAPerspectiveProjectionIsWFog) {
+    // D3D9 "Eye-Relative vs. Z-based Depth": with a perspective projection table fog is of the
+    // eye-space depth (w), FOGSTART/FOGEND in camera units (what ff_fog_texgen.trace's cell 7
+    // shows Wine doing). A quad at camera z = 4 filling the view of a projection with near 1, far
+    // 10 (_33 = 10/9, _34 = 1, _43 = -10/9): LINEAR start 2, end 7: f = (7 - 4) / 5 = 0.6, white
+    // fogged towards blue: (0.6, 0.6, 1) -> (153, 153, 255). Of the depth z/w = 0.8333 instead,
+    // f = 1.23 would clamp to 1: white.
+    Words w;
+    for (auto [x, y] : {std::pair{-4.0f, 4.0f}, {4.0f, 4.0f}, {-4.0f, -4.0f}, {4.0f, -4.0f}}) w.f({x, y, 4.0f});
+    const std::string fog =
+        "SetRenderState LIGHTING FALSE\nSetRenderState FOGENABLE TRUE\nSetRenderState FOGCOLOR 0xFF0000FF\n"
+        "SetRenderState FOGSTART 2\nSetRenderState FOGEND 7\nSetRenderState FOGTABLEMODE LINEAR\n";
+    const std::string quad = "SetFVF XYZ\nDrawPrimitiveUP TRIANGLESTRIP 2 12 " + w.blob() + "\n";
+    const Outcome o = replay_text(fog +
+        "SetTransform PROJECTION f32[ 1 0 0 0  0 1 0 0  0 0 1.1111111 1  0 0 -1.1111111 0 ]\n" + quad);
+    expect_no_diagnostics(o.result);
+    EXPECT_EQ(pixel(o, 1, 1), 0xFF9999FFu);
+    EXPECT_EQ(pixel(o, 3, 0), 0xFF9999FFu);
+    // An orthographic projection (fourth column (0, 0, 0, 1)) keeps the fog of the depth: the quad
+    // through x/4, y/4, z/8: depth 0.5 < FOGSTART 2, no fog at all.
+    const Outcome ortho = replay_text(fog +
+        "SetTransform PROJECTION f32[ 0.25 0 0 0  0 0.25 0 0  0 0 0.125 0  0 0 0 1 ]\n" + quad);
+    expect_no_diagnostics(ortho.result);
+    EXPECT_EQ(pixel(ortho, 1, 1), 0xFFFFFFFFu);
+}
+
 // The columns (0..3) of row 1 that a blended draw covers, as a 4-character mask ("0110").
 std::string covered_columns(const Outcome& o) {
     std::string mask;
