@@ -643,6 +643,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     std::string error;
     std::shared_ptr<ShaderObject> ff_vs, ff_ps;
     std::vector<std::array<float, 4>> ff_vs_constants, ff_ps_constants;
+    bool ff_w_fog = false;  // the fixed-function vertex program passes the eye depth for W-fog
     if (!vertex_shader_) {
         const auto state = [&](uint32_t id, uint32_t fallback) {
             const auto it = other_render_states_.find(id);
@@ -666,6 +667,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
         ff_vs = fixed_function_shader(fixed_function_programs_, generated, error);
         if (!ff_vs) return CallResult::fail(error);
         ff_vs_constants = std::move(generated.constants);
+        ff_w_fog = generated.w_fog;
         ff_vs_constants.resize(kMaxVertexShaderConstantsF, {0.0f, 0.0f, 0.0f, 0.0f});
     }
     if (!pixel_shader_) {
@@ -696,7 +698,8 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     if (!ps_entry) return CallResult::fail("pixel shader: " + error);
     const emu::Executable& ps = ps_entry->executable;
     uint16_t varyings = varyings_read_by(ps);
-    if (merger.fog_enable && merger.fog_table_mode == FogMode::None) varyings |= 1u << kVaryingFog;
+    merger.table_fog_of_w = ff_w_fog;
+    if (merger.fog_enable && (merger.fog_table_mode == FogMode::None || ff_w_fog)) varyings |= 1u << kVaryingFog;
     const bool points = type == PrimitiveType::PointList ||
                         (render_state_.fill_mode == FillMode::Point && type >= PrimitiveType::TriangleList);
     uint32_t vs_outputs = vs_outputs_for(varyings);

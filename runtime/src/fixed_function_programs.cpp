@@ -254,6 +254,11 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
     if (indexed_blend && !blend_indices) return refused("INDEXEDVERTEXBLENDENABLE: the vertex has no BLENDINDICES");
     const bool vertex_fog =
         rs.fog_enable && rs.fog_table_mode == FogMode::None && !pretransformed && rs.fog_vertex_mode != FogMode::None;
+    // Table fog under a perspective projection (any but a fourth column (0, 0, 0, 1), Wine's test
+    // too) is W-fog: of the eye-space depth, which the program passes in oFog.
+    const auto& proj = ff.projection;
+    const bool w_fog = rs.fog_enable && rs.fog_table_mode != FogMode::None && !pretransformed &&
+                       !(proj[3] == 0.0f && proj[7] == 0.0f && proj[11] == 0.0f && proj[15] == 1.0f);
     std::vector<const Light*> lights;
     if (lighting)
         for (uint32_t index : ff.enabled_lights) {
@@ -338,7 +343,7 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
         std::copy(wv.begin(), wv.end(), constants.begin() + kVcWorldView);
         b.op(Opcode::M4x4, o_pos(isa::kMaskAll), {in(kInPosition), c(kVcTransform)});
         // Camera-space position in r0 (lighting, fog and point scale read it).
-        if (lighting || vertex_fog || generates_from_position || point_scale)
+        if (lighting || vertex_fog || w_fog || generates_from_position || point_scale)
             b.op(Opcode::M4x4, rd(0), {in(kInPosition), c(kVcWorldView)});
         // Camera-space normal in r1 (lighting and texgen read it): through the inverse transpose of
         // world x view's 3x3, normalized with NORMALIZENORMALS; (0, 0, 0) when the vertex has none.
@@ -426,7 +431,9 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
     if (lighting) {
         // D3D9 "Mathematics of Lighting" (camera space): colour = Ce + Ca (Ga + sum Atten La)
         // + Cd sum (Atten Ld max(N.L, 0)), specular = Cs sum (Atten Ls (N.H)^P) where N.L > 0;
-        // H = norm(norm(-P) + L) with LOCALVIEWER, norm((0, 0, 1) + L) without.
+        // H = norm(norm(-P) + L) with LOCALVIEWER, norm((0, 0, -1) + L) without: the direction
+        // to an eye infinitely far down -z, the reverse of the reflection vector's incident
+        // (0, 0, 1) below (Wine's ffp and the Windows drivers its specular tests were checked on).
         constants[kVcGlobalAmbient] = color_of(states.ambient);
         constants[kVcMaterial + 0] = rgba(ff.material.diffuse);
         constants[kVcMaterial + 1] = rgba(ff.material.ambient);
@@ -439,7 +446,7 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
             b.op(Opcode::Mov, rd(2, kXYZ), {negated(r(2))});
         } else {
             b.op(Opcode::Mov, rd(2), {c(kVcZero)});
-            b.op(Opcode::Mov, rd(2, kZ), {c(kVcOne)});
+            b.op(Opcode::Mov, rd(2, kZ), {negated(c(kVcOne))});
         }
         for (unsigned n : {3u, 4u, 5u}) b.op(Opcode::Mov, rd(n), {c(kVcZero)});
         for (size_t i = 0; i < lights.size(); ++i) {
@@ -632,6 +639,10 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
         // FOGVERTEXMODE NONE (and XYZRHW vertices): the fog factor is the specular colour's
         // alpha (D3D9, "Vertex Fog"); with no specular in the vertex, no fog (factor 1).
         b.op(Opcode::Mov, o_fog, {has_specular ? in(kInSpecular, kSwizzleW) : c(kVcOne, kSwizzleW)});
+    } else if (w_fog) {
+        // W-fog: the eye-space depth (w of a perspective projection), interpolated perspective-
+        // correctly, hence exact per pixel; the merger applies FOGTABLEMODE to it.
+        b.op(Opcode::Mov, o_fog, {r(0, kSwizzleZ)});
     }
     if (has_point_size || point_scale) {
         // oPts: the vertex's PSIZE, else POINTSIZE; with POINTSCALEENABLE (D3D9 "Point Sprites")
@@ -655,7 +666,9 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
             b.op(Opcode::Mov, o_pts, {size});
         }
     }
-    return std::move(b).finish(std::move(constants));
+    FixedFunctionProgram out = std::move(b).finish(std::move(constants));
+    out.w_fog = w_fog;
+    return out;
 }
 
 namespace {

@@ -23,6 +23,11 @@ struct FixedFunctionProgram {
     std::string key;                               // the program as text: equal keys, equal programs
     std::vector<std::array<float, 4>> constants;   // c0.. for this draw
     std::string error;
+    // Vertex program: table fog is W-fog (D3D9 "Eye-Relative vs. Z-based Depth": a perspective
+    // projection makes table fog a function of the eye-space depth, FOGSTART/FOGEND in camera
+    // units): oFog carries camera-space z, and the merger's table fog reads it instead of the
+    // pixel's depth.
+    bool w_fog = false;
 };
 
 // The vertex program for a draw without a vertex shader, reading the declaration's elements.

@@ -476,7 +476,8 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
     for (unsigned c = 0; c < 4; ++c) color0[c].v = batch.render_target(0)[c];
     if (s.fog_enable) {
         std::array<float, kLanes> f;
-        for (unsigned l = 0; l < kLanes; ++l) f[l] = fog_factor(s, lanes.fog[l], depth[l]);
+        for (unsigned l = 0; l < kLanes; ++l)
+            f[l] = fog_factor(s, lanes.fog[l], s.table_fog_of_w ? lanes.fog[l] : depth[l]);
         for (unsigned c = 0; c < 3; ++c)
             for (unsigned l = 0; l < kLanes; ++l)
                 color0[c].v[l] = f[l] * color0[c].v[l] + (1.0f - f[l]) * s.fog_color[c];

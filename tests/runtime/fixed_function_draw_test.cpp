@@ -145,10 +145,12 @@ TEST(FixedFunctionDraw, SpecularHighlightWithALocalViewer) {
     // norm(-+0.6667, -+0.6667, -1.3333), N.H = 1.3333 / 1.63299 = 0.81650; Power 2: 0.66667;
     // light specular 1, material specular 0.6: 0.4 -> 102 (0x66) with SPECULARENABLE (material
     // diffuse and ambient 0, so the specular is all there is).
-    // LOCALVIEWER off (D3D9's "Specular Lighting": H = norm((0, 0, 1) + L)): the light shining
-    // along (-0.6, 0, 0.8), L = (0.6, 0, -0.8), N = (1, 0, 0): N.L = 0.6 > 0, H = norm(0.6, 0, 0.2)
-    // = (0.94868, 0, 0.31623), N.H^2 = 0.9, 0.6 * 0.9 = 0.54 -> 137.7 -> 0x8A, the same at every
-    // vertex (with the local viewer it would differ per vertex).
+    // LOCALVIEWER off: the eye infinitely far down -z, E = (0, 0, -1), H = norm(E + L). The light
+    // shining along (-0.6, 0, 0.8), L = (0.6, 0, -0.8), N = (0.6, 0, -0.8): N.L = 1,
+    // H = norm(0.6, 0, -1.8) = (0.31623, 0, -0.94868), N.H = 0.94868, N.H^2 = 0.9,
+    // 0.6 * 0.9 = 0.54 -> 137.7 -> 0x8A, the same at every vertex (with the local viewer it would
+    // differ per vertex). With E = (0, 0, +1) (the highlight on the far side; what this code did
+    // before ff_lighting.trace showed Wine's highlight) N.H^2 = 0.1: 0x0F.
     const auto highlight = [](const char* local_viewer, const char* direction, float nx, float nz) {
         const Outcome o = replay_text(
             std::string("SetRenderState SPECULARENABLE TRUE\nSetRenderState LOCALVIEWER ") + local_viewer +
@@ -159,7 +161,7 @@ TEST(FixedFunctionDraw, SpecularHighlightWithALocalViewer) {
         return pixel(o, 1, 1);
     };
     EXPECT_EQ(highlight("TRUE", "{ 0 0 1 }", 0, -1), 0xFF666666u);
-    EXPECT_EQ(highlight("FALSE", "{ -0.6 0 0.8 }", 1, 0), 0xFF8A8A8Au);
+    EXPECT_EQ(highlight("FALSE", "{ -0.6 0 0.8 }", 0.6f, -0.8f), 0xFF8A8A8Au);
 }
 
 TEST(FixedFunctionDraw, PointLightAttenuationAndRange) {
@@ -387,6 +389,32 @@ TEST(FixedFunctionDraw, TableFogOfAFixedFunctionDraw) {
         "SetRenderState FOGDENSITY 2\nSetRenderState FOGTABLEMODE EXP\n" + uniform_quad("XYZ", {}, 0.25f));
     expect_no_diagnostics(o.result);
     EXPECT_EQ(pixel(o, 1, 1), 0xFF9B9BFFu);
+}
+
+TEST(FixedFunctionDraw, TableFogUnderAPerspectiveProjectionIsWFog) {
+    // D3D9 "Eye-Relative vs. Z-based Depth": with a perspective projection table fog is of the
+    // eye-space depth (w), FOGSTART/FOGEND in camera units (what ff_fog_texgen.trace's cell 7
+    // shows Wine doing). A quad at camera z = 4 filling the view of a projection with near 1, far
+    // 10 (_33 = 10/9, _34 = 1, _43 = -10/9): LINEAR start 2, end 7: f = (7 - 4) / 5 = 0.6, white
+    // fogged towards blue: (0.6, 0.6, 1) -> (153, 153, 255). Of the depth z/w = 0.8333 instead,
+    // f = 1.23 would clamp to 1: white.
+    Words w;
+    for (auto [x, y] : {std::pair{-4.0f, 4.0f}, {4.0f, 4.0f}, {-4.0f, -4.0f}, {4.0f, -4.0f}}) w.f({x, y, 4.0f});
+    const std::string fog =
+        "SetRenderState LIGHTING FALSE\nSetRenderState FOGENABLE TRUE\nSetRenderState FOGCOLOR 0xFF0000FF\n"
+        "SetRenderState FOGSTART 2\nSetRenderState FOGEND 7\nSetRenderState FOGTABLEMODE LINEAR\n";
+    const std::string quad = "SetFVF XYZ\nDrawPrimitiveUP TRIANGLESTRIP 2 12 " + w.blob() + "\n";
+    const Outcome o = replay_text(fog +
+        "SetTransform PROJECTION f32[ 1 0 0 0  0 1 0 0  0 0 1.1111111 1  0 0 -1.1111111 0 ]\n" + quad);
+    expect_no_diagnostics(o.result);
+    EXPECT_EQ(pixel(o, 1, 1), 0xFF9999FFu);
+    EXPECT_EQ(pixel(o, 3, 0), 0xFF9999FFu);
+    // An orthographic projection (fourth column (0, 0, 0, 1)) keeps the fog of the depth: the quad
+    // through x/4, y/4, z/8: depth 0.5 < FOGSTART 2, no fog at all.
+    const Outcome ortho = replay_text(fog +
+        "SetTransform PROJECTION f32[ 0.25 0 0 0  0 0.25 0 0  0 0 0.125 0  0 0 0 1 ]\n" + quad);
+    expect_no_diagnostics(ortho.result);
+    EXPECT_EQ(pixel(ortho, 1, 1), 0xFFFFFFFFu);
 }
 
 // The columns (0..3) of row 1 that a blended draw covers, as a 4-character mask ("0110").

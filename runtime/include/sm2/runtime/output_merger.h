@@ -35,6 +35,9 @@ struct BlendState {
 struct OutputMergerState {
     bool fog_enable = false;
     FogMode fog_table_mode = FogMode::None;
+    // Table fog of the interpolated oFog (the eye depth of a fixed-function W-fog draw) instead of
+    // the pixel's depth.
+    bool table_fog_of_w = false;
     float fog_start = 0.0f, fog_end = 1.0f, fog_density = 1.0f;
     Vec4 fog_color{};
     bool alpha_test = false;
