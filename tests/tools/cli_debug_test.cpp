@@ -281,6 +281,39 @@ TEST(CliDebug, HlslPixelShaderTextListsEachLinesInstructionsUnderIt) {
     EXPECT_NE(r.out.find("      lane 1 (1, 2): (3, 2, 5, 9)  <- the pixel\n", line9), std::string::npos) << r.out;
 }
 
+TEST(CliDebug, BytecodeFromSm2CompileDebugInfoStepsByHlslLine) {
+    // The same HLSL compiled by sm2 compile, with and without -g, read by the stream as a side
+    // file: with the line table the steps are grouped under ps_lines.hlsl's lines, without it they
+    // are the assembly's.
+    const std::string source = tmp("ps_lines.hlsl");
+    write_file(source, kHlslPixelShader);
+    const std::string with_table = tmp("ps_lines_g.bin"), without_table = tmp("ps_lines.bin");
+    ASSERT_EQ(sm2("compile " + source + " -T ps_2_0 -g -o " + with_table).status, 0);
+    ASSERT_EQ(sm2("compile " + source + " -T ps_2_0 -o " + without_table).status, 0);
+    const std::string with_name = std::filesystem::path(with_table).filename().string();
+    const std::string without_name = std::filesystem::path(without_table).filename().string();
+    std::string text = kGradient;
+    const std::string asm_shader = "CreatePixelShader ps asm<<END\n" + kPixelShader + "END\n";
+    text.replace(text.find(asm_shader), asm_shader.size(), "CreatePixelShader ps @\"" + with_name + "\"\n");
+    const std::string constants = "SetPixelShaderConstantF 0 f32[ 0.25 0.5 -1 0 ]\n";
+    text.replace(text.find(constants), constants.size(), "SetPixelShaderConstantF 0 f32[ 1 2 3 0   0.5 0.25 1 2 ]\n");
+    const std::string stream = tmp("hlsl_bytecode.sm2cs");
+    write_file(stream, text);
+    const Result with = sm2("debug " + stream + " --frame 0 --pixel 1,2");
+    ASSERT_EQ(with.status, 0) << with.err;
+    const size_t line7 = with.out.find(source + ":7: float d = dot(n, light);\n  step 2, line ");
+    ASSERT_NE(line7, std::string::npos) << with.out;
+    EXPECT_NE(with.out.find("      lane 1 (1, 2): (4, 0, 0, 0)  <- the pixel\n", line7), std::string::npos) << with.out;
+    text.replace(text.find(with_name), with_name.size(), without_name);
+    write_file(stream, text);
+    const Result without = sm2("debug " + stream + " --frame 0 --pixel 1,2");
+    ASSERT_EQ(without.status, 0) << without.err;
+    EXPECT_NE(without.out.find("carries no HLSL line table"), std::string::npos) << without.out;
+    EXPECT_EQ(without.out.find(":7: float d"), std::string::npos) << without.out;
+    EXPECT_NE(without.out.find("step 2, line "), std::string::npos) << without.out;
+    EXPECT_NE(without.out.find(": dp3 r1.x, r0, c0\n  r1 (x)\n"), std::string::npos) << without.out;
+}
+
 TEST(CliDebug, VertexShaderOfAKnownVertex) {
     // Vertex 1: v0 = (0.5, 0.5, 0.5, 1) (FLOAT3, w = 1), v1 = (4, 0, 0, 1); m4x4 by diag(2, 2, 1, 1).
     const auto j = run_json("debug " + gradient_stream() + " --frame 0 --vertex 1");
