@@ -20,6 +20,7 @@
 #include "commands.h"
 #include "image_compare.h"
 #include "sm2/assembler/disassembler.h"
+#include "sm2/isa/line_table.h"
 #include "sm2/runtime/device_inspection.h"
 #include "sm2/runtime/pixel_history.h"
 #include "stream_io.h"
@@ -370,26 +371,76 @@ json lanes_json(const emu::InstructionWrite& w, unsigned lanes) {
 }
 
 void print_register(std::ostream& out, const std::string& name, const emu::InstructionWrite& w, const rt::ShaderDebug& d,
-                    const LaneNames& lanes) {
-    out << "  " << name << " (" << mask_text(w.mask) << ")";
+                    const LaneNames& lanes, const std::string& indent = "") {
+    out << indent << "  " << name << " (" << mask_text(w.mask) << ")";
     if (d.lanes == 1) {
         out << " " << vec_text(w.lanes[0]) << '\n';
         return;
     }
     out << '\n';
     for (unsigned l = 0; l < d.lanes; ++l)
-        out << "    lane " << l << " " << lanes.name(l) << ": " << vec_text(w.lanes[l])
+        out << indent << "    lane " << l << " " << lanes.name(l) << ": " << vec_text(w.lanes[l])
             << (l == d.watched_lane ? "  <- the pixel" : (d.covered >> l & 1u) ? "" : "  (helper)") << '\n';
 }
 
 std::string write_name(const emu::InstructionWrite& w) { return w.address ? "a0" : emu::slot_name(w.slot); }
 
+// The HLSL line of each step, from the shader's line table (sm2/isa/line_table.h), and the steps
+// grouped into runs of consecutive steps on the same line: a reader steps by HLSL line. Without a
+// table (assembly, bytecode compiled without --debug-info, fixed function) there are no groups.
+struct HlslLines {
+    std::optional<isa::LineTable> table;
+    std::vector<const isa::LineTable::Entry*> step_entry;  // per step (nullptr: no line)
+    struct Group {
+        const isa::LineTable::Entry* entry = nullptr;
+        std::vector<size_t> steps;  // 0-based
+    };
+    std::vector<Group> groups;
+
+    HlslLines(const isa::Program& program, const std::vector<emu::InstructionTrace>& steps) {
+        auto found = isa::find_line_table(program);
+        if (!found || !found->ok()) return;
+        table = std::move(found->table);
+        const auto ordinals = isa::instruction_ordinals(program);
+        for (size_t i = 0; i < steps.size(); ++i) {
+            const uint32_t k = steps[i].instruction;
+            const isa::LineTable::Entry* e =
+                k < ordinals.size() && ordinals[k] >= 0 ? table->entry(static_cast<uint32_t>(ordinals[k])) : nullptr;
+            step_entry.push_back(e);
+            const bool same = !groups.empty() && (groups.back().entry == e ||
+                                                  (e && groups.back().entry && groups.back().entry->file == e->file &&
+                                                   groups.back().entry->line == e->line));
+            if (!same) groups.push_back({e, {}});
+            groups.back().steps.push_back(i);
+        }
+    }
+    [[nodiscard]] std::string file(const isa::LineTable::Entry& e) const { return table->files.at(e.file); }
+    [[nodiscard]] std::string text(const isa::LineTable::Entry& e) const {
+        const std::string* t = table->text(e.file, e.line);
+        return t ? *t : std::string();
+    }
+    [[nodiscard]] json entry_json(const isa::LineTable::Entry* e) const {
+        if (!e) return nullptr;
+        return {{"file", file(*e)}, {"line", e->line}, {"text", text(*e)}};
+    }
+};
+
+// "  float3 n = ...;" without its indentation, for a heading.
+std::string trimmed(const std::string& text) {
+    const size_t first = text.find_first_not_of(" \t");
+    if (first == std::string::npos) return std::string();
+    return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
+}
+
 int print_debug(const rt::ShaderDebug& d, json header, const std::string& title, const LaneNames& lanes, bool as_json) {
     DisassemblyLines dis(*d.program);
+    const HlslLines hlsl(*d.program, d.steps);
     const char* source_note =
         d.fixed_function ? "the fixed-function program generated for the draw's state (no source text)"
-                         : "assembly, one step per instruction as sm2 dis prints it (the stream's shaders carry no HLSL line "
-                           "information)";
+        : hlsl.table     ? "HLSL, stepped by source line (the shader's HLSL line table): each line's assembly "
+                           "instructions under it as sm2 dis prints them"
+                         : "assembly, one step per instruction as sm2 dis prints it (this shader carries no HLSL line "
+                           "table)";
     if (as_json) {
         json j = std::move(header);
         j["shader"] = d.program->version.name();
@@ -414,6 +465,7 @@ int print_debug(const rt::ShaderDebug& d, json header, const std::string& title,
         for (size_t i = 0; i < d.steps.size(); ++i) {
             const auto& s = d.steps[i];
             json sj = {{"step", i + 1}, {"instruction", s.instruction}, {"line", dis.line(s.instruction)}, {"text", dis.text(s.instruction)}};
+            if (hlsl.table) sj["hlsl"] = hlsl.entry_json(hlsl.step_entry[i]);
             sj["writes"] = json::array();
             for (const auto& w : s.writes)
                 sj["writes"].push_back({{"register", write_name(w)}, {"mask", mask_text(w.mask)}, {"lanes", lanes_json(w, d.lanes)}});
@@ -423,6 +475,16 @@ int print_debug(const rt::ShaderDebug& d, json header, const std::string& title,
                     if (s.killed >> l & 1u) sj["killed"].push_back(l);
             }
             j["steps"].push_back(sj);
+        }
+        if (hlsl.table) {
+            j["hlsl_lines"] = json::array();
+            for (const auto& g : hlsl.groups) {
+                json gj = hlsl.entry_json(g.entry);
+                if (gj.is_null()) gj = json::object({{"file", nullptr}, {"line", nullptr}, {"text", nullptr}});
+                gj["steps"] = json::array();
+                for (size_t i : g.steps) gj["steps"].push_back(i + 1);
+                j["hlsl_lines"].push_back(gj);
+            }
         }
         std::cout << json_text(j) << '\n';
         return kOk;
@@ -437,12 +499,13 @@ int print_debug(const rt::ShaderDebug& d, json header, const std::string& title,
     std::cout << "inputs:\n";
     for (const auto& in : d.inputs) print_register(std::cout, write_name(in), in, d, lanes);
     if (!d.constants.empty()) std::cout << "constants: " << registers_text(d.constants, true) << '\n';
-    for (size_t i = 0; i < d.steps.size(); ++i) {
+    auto print_step = [&](size_t i, const std::string& indent) {
         const auto& s = d.steps[i];
-        std::cout << "step " << i + 1 << ", line " << dis.line(s.instruction) << ": " << dis.text(s.instruction) << '\n';
-        for (const auto& w : s.writes) print_register(std::cout, write_name(w), w, d, lanes);
+        std::cout << indent << "step " << i + 1 << ", line " << dis.line(s.instruction) << ": " << dis.text(s.instruction)
+                  << '\n';
+        for (const auto& w : s.writes) print_register(std::cout, write_name(w), w, d, lanes, indent);
         if (s.texkill) {
-            std::cout << "  killed lanes:";
+            std::cout << indent << "  killed lanes:";
             bool any = false;
             for (unsigned l = 0; l < d.lanes; ++l)
                 if (s.killed >> l & 1u) {
@@ -451,6 +514,17 @@ int print_debug(const rt::ShaderDebug& d, json header, const std::string& title,
                 }
             std::cout << (any ? "\n" : " none\n");
         }
+    };
+    if (!hlsl.table) {
+        for (size_t i = 0; i < d.steps.size(); ++i) print_step(i, "");
+        return kOk;
+    }
+    for (const auto& g : hlsl.groups) {
+        if (g.entry)
+            std::cout << hlsl.file(*g.entry) << ":" << g.entry->line << ": " << trimmed(hlsl.text(*g.entry)) << '\n';
+        else
+            std::cout << "(no HLSL line)\n";
+        for (size_t i : g.steps) print_step(i, "  ");
     }
     return kOk;
 }

@@ -269,6 +269,7 @@ struct CompileCommandOptions {
     std::vector<std::string> defines;
     std::vector<std::string> include_dirs;
     bool fxc_errors = false;
+    bool debug_info = false;
 };
 
 // Empty when `define` is NAME or NAME=VALUE with NAME an identifier.
@@ -319,6 +320,7 @@ int run_compile(const CompileCommandOptions& o) {
     options.entry_point = o.entry;
     options.stage = *stage;
     options.include_dirs = o.include_dirs;
+    options.debug_info = o.debug_info;
     for (const auto& d : o.defines) {
         const size_t eq = d.find('=');
         options.defines.emplace_back(d.substr(0, eq), eq == std::string::npos ? "1" : d.substr(eq + 1));
@@ -393,6 +395,9 @@ void add_shader_commands(CLI::App& app, int& status) {
         ->check(CLI::Validator(c_identifier_error, "C identifier", "C identifier"));
     compile_cmd->add_flag("--fxc-errors", compile_options->fxc_errors,
                           "Print errors with fxc's numbers: file(line,col): error X3000: message");
+    compile_cmd->add_flag("-g,--debug-info", compile_options->debug_info,
+                          "Add the HLSL line table (a comment block 'SM2L', as fxc /Zi adds its debug block): each "
+                          "instruction's HLSL file and line, for sm2 debug");
     compile_cmd->callback([compile_options, &status] { status = run_compile(*compile_options); });
 }
 

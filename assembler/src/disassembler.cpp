@@ -9,6 +9,7 @@
 #include "sm2/assembler/assembler.h"
 #include "sm2/isa/bytecode.h"
 #include "sm2/isa/constant_table.h"
+#include "sm2/isa/line_table.h"
 
 #include "sm2/isa/opcodes.h"
 #include "sm2/isa/registers.h"
@@ -182,10 +183,31 @@ void append_members(const std::vector<isa::ConstantMember>& members, const std::
     }
 }
 
+// The HLSL line table sm2 compile --debug-info writes: each instruction's line, by instruction
+// (counted without comments, from 0), then the lines' text.
+std::string describe_line_table(const std::vector<uint32_t>& payload, const std::string& size) {
+    const isa::LineTableResult parsed = isa::parse_line_table(payload);
+    if (!parsed.ok()) return "// SM2L HLSL line table, " + size + ", not decoded: " + printable(parsed.error) + "\n";
+    const isa::LineTable& t = *parsed.table;
+    std::string out = "// SM2L HLSL line table, " + size + ": " + std::to_string(t.entries.size()) + " instruction" +
+                      (t.entries.size() == 1 ? "" : "s") + " from " + std::to_string(t.lines.size()) + " line" +
+                      (t.lines.size() == 1 ? "" : "s") + "\n";
+    for (const auto& l : t.lines) {
+        std::string instructions;
+        for (const auto& e : t.entries)
+            if (e.file == l.file && e.line == l.line)
+                instructions += (instructions.empty() ? "" : ",") + std::to_string(e.instruction);
+        out += "//   " + printable(t.files[l.file]) + ":" + std::to_string(l.line) + " (instructions " + instructions +
+               "): " + printable(l.text) + "\n";
+    }
+    return out;
+}
+
 // `//` lines that say what a comment block holds: a constant table decoded, or its FOURCC.
 std::string describe_comment(const std::vector<uint32_t>& payload) {
     const std::string size = std::to_string(payload.size()) + " DWORD" + (payload.size() == 1 ? "" : "s");
     if (payload.empty()) return "// empty comment block\n";
+    if (payload[0] == isa::kFourccLineTable) return describe_line_table(payload, size);
     if (payload[0] != isa::kFourccCtab) {
         if (!is_printable_fourcc(payload[0])) return "// comment block, " + size + "\n";
         return "// comment block '" + printable(fourcc_text(payload[0])) + "', " + size + "\n";

@@ -28,7 +28,7 @@ namespace {
 
 // SPIR-V numbers used below (SPIR-V specification, §3).
 namespace op {
-constexpr uint32_t Undef = 1, Name = 5, MemberName = 6, Line = 8, ExtInst = 12, EntryPoint = 15, TypeVoid = 19,
+constexpr uint32_t Undef = 1, Name = 5, MemberName = 6, String = 7, Line = 8, ExtInst = 12, EntryPoint = 15, TypeVoid = 19,
                    TypeBool = 20, TypeInt = 21, TypeFloat = 22, TypeVector = 23, TypeMatrix = 24,
                    TypeImage = 25, TypeSampledImage = 27, TypeArray = 28, TypeStruct = 30, TypePointer = 32,
                    ConstantTrue = 41, ConstantFalse = 42, Constant = 43, ConstantComposite = 44,
@@ -61,6 +61,7 @@ struct SpirvInstruction {
     uint32_t opcode = 0;
     std::vector<uint32_t> words;  // operands, without the opcode word
     isa::SourceLocation location;  // the OpLine in effect
+    uint32_t file = 0;             // its OpString (0: none)
 };
 
 // A SPIR-V type, reduced to what the back end needs.
@@ -157,6 +158,8 @@ private:
     void fail(AssemblyOutput& out, const std::string& message) const {
         out.text.clear();
         out.origin.clear();
+        out.line_origin.clear();
+        out.line_file.clear();
         out.diagnostics.push_back({assembler::Severity::Error, options_.file_name, location_.line, location_.column, message});
     }
 
@@ -166,16 +169,22 @@ private:
         entry_location_ = find_entry_location();
         location_ = entry_location_;
         isa::SourceLocation line;
+        uint32_t file = 0;
         bool in_function = false;
         for (size_t i = 5; i < spirv_.size();) {
             const uint32_t count = spirv_[i] >> 16, opcode = spirv_[i] & 0xFFFF;
             if (count == 0 || i + count > spirv_.size()) throw CompileError("internal error: malformed SPIR-V");
-            SpirvInstruction ins{opcode, {spirv_.begin() + static_cast<long>(i) + 1, spirv_.begin() + static_cast<long>(i + count)}, line};
+            SpirvInstruction ins{opcode, {spirv_.begin() + static_cast<long>(i) + 1, spirv_.begin() + static_cast<long>(i + count)}, line, file};
             i += count;
             switch (opcode) {
             case op::Line:
-                if (ins.words.size() >= 3 && ins.words[1] > 0)
+                if (ins.words.size() >= 3 && ins.words[1] > 0) {
                     line = {ins.words[1], std::max<uint32_t>(ins.words[2], 1)};
+                    file = ins.words[0];
+                }
+                continue;
+            case op::String:
+                if (ins.words.size() >= 2) strings_[ins.words[0]] = literal_string(ins.words, 1);
                 continue;
             case op::NoLine: continue;
             case op::EntryPoint:
@@ -360,6 +369,7 @@ private:
     void line(const std::string& text) {
         code_.push_back(text);
         code_origin_.push_back(location_);
+        code_line_.push_back({line_location_, location_file_});
     }
 
     static bool swizzle_allowed_in_ps(const std::array<uint8_t, 4>& s) {
@@ -594,9 +604,26 @@ private:
             }
         }
         size_t labels = 0;
+        // For the line table: the line of each value's definition. glslang's entry-point wrapper
+        // stores the outputs with the line of the function's opening brace; such a store is
+        // given the line of the value stored (the `return` expression's), when that has one.
+        std::unordered_map<uint32_t, std::pair<isa::SourceLocation, uint32_t>> value_line;
         for (size_t i = 0; i < body_.size(); ++i) {
             const auto& ins = body_[i];
             location_ = ins.location.line ? ins.location : entry_location_;
+            if (ins.location.line) {  // else the line table keeps the last known line (the optimizer dropped it)
+                line_location_ = ins.location;
+                location_file_ = ins.file;
+                if (ins.opcode != op::Store && ins.words.size() >= 2) value_line.emplace(ins.words[1], std::pair{ins.location, ins.file});
+            }
+            if (ins.opcode == op::Store && ins.words.size() >= 2) {
+                auto var = variables_.find(ins.words[0]);
+                auto defined = value_line.find(ins.words[1]);
+                if (var != variables_.end() && var->second.second == kStorageOutput && defined != value_line.end()) {
+                    line_location_ = defined->second.first;
+                    location_file_ = defined->second.second;
+                }
+            }
             if (ins.opcode == op::Label && ++labels > 1)
                 throw CompileError("flow control that depends on run-time values (an if, loop or discard the optimizer "
                                    "could not flatten) is not supported by this compiler for " + profile());
@@ -1512,10 +1539,16 @@ private:
         for (const auto& h : head) {
             out.text += h + "\n";
             out.origin.push_back(entry_location_);
+            out.line_origin.push_back({});
+            out.line_file.push_back(std::string());
         }
         for (size_t k = 0; k < code_.size(); ++k) {
             out.text += code_[k] + "\n";
             out.origin.push_back(code_origin_[k]);
+            const auto& [where, file] = code_line_[k];
+            auto name = strings_.find(file);
+            out.line_origin.push_back(where);
+            out.line_file.push_back(name == strings_.end() || name->second.empty() ? options_.file_name : name->second);
         }
     }
 
@@ -1580,6 +1613,12 @@ private:
     std::map<std::string, std::string> declarations_;
     std::vector<std::string> code_;
     std::vector<isa::SourceLocation> code_origin_;
+    // Per code_ line, for the line table: the OpLine in effect, or the last one before it when the
+    // SPIR-V instruction has none (line 0: none yet), and its OpString id.
+    std::vector<std::pair<isa::SourceLocation, uint32_t>> code_line_;
+    std::unordered_map<uint32_t, std::string> strings_;  // OpString: file names
+    isa::SourceLocation line_location_;
+    uint32_t location_file_ = 0;
 };
 
 }  // namespace

@@ -16,6 +16,11 @@ namespace sm2::hlsl {
 struct AssemblyOutput {
     std::string text;                            // "ps_2_0\ndcl ...\n..." (empty on error)
     std::vector<isa::SourceLocation> origin;     // per line of `text` (0-based): the HLSL line/column
+    // Per line of `text`, for the line table (CompileOptions::debug_info): the HLSL line of the
+    // SPIR-V instruction it came from, or of the nearest one before it that had a line (line 0:
+    // a declaration, or none known), and that line's file.
+    std::vector<isa::SourceLocation> line_origin;
+    std::vector<std::string> line_file;
     std::vector<assembler::Diagnostic> diagnostics;
 };
 

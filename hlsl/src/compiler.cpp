@@ -3,10 +3,16 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
 
 #include "backend.h"
 #include "frontend.h"
 #include "sm2/assembler/assembler.h"
+#include "sm2/isa/bytecode.h"
+#include "sm2/isa/line_table.h"
 
 namespace sm2::hlsl {
 
@@ -54,6 +60,83 @@ void add_diagnostics(std::vector<Diagnostic>& out, Stage stage, const std::vecto
         coded.fxc_code = fxc_code(stage, d.message);
         out.push_back(std::move(coded));
     }
+}
+
+std::vector<std::string> split_lines(std::string_view text) {
+    std::vector<std::string> lines;
+    for (size_t start = 0; start < text.size();) {
+        size_t end = text.find('\n', start);
+        if (end == std::string_view::npos) end = text.size();
+        std::string line(text.substr(start, end - start));
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        lines.push_back(std::move(line));
+        start = end + 1;
+    }
+    return lines;
+}
+
+// Each code instruction's HLSL file and line (the back end's line_origin of the assembly line it
+// was assembled from), and the text of those lines: the main file's from `source`, an included
+// file's read again from disk (no text when it cannot be). A dcl or def has no line.
+isa::LineTable build_line_table(const isa::Program& program, const AssemblyOutput& assembly, std::string_view source,
+                                const CompileOptions& options) {
+    constexpr size_t kMaxLineText = 256;  // longer lines are cut: the block must stay under 32767 DWORDs
+    isa::LineTable table;
+    std::map<std::string, uint32_t> file_index;
+    std::map<uint32_t, std::vector<std::string>> file_lines;
+    std::set<std::pair<uint32_t, uint32_t>> lines_used;
+    const auto ordinals = isa::instruction_ordinals(program);
+    for (size_t k = 0; k < program.instructions.size(); ++k) {
+        const auto& ins = program.instructions[k];
+        if (ins.opcode == isa::Opcode::Comment || ins.is_setup()) continue;
+        const uint32_t text_line = ins.location.line;
+        if (text_line < 1 || text_line > assembly.line_origin.size() || assembly.line_origin[text_line - 1].line == 0)
+            continue;
+        const std::string& file = assembly.line_file[text_line - 1];
+        auto [it, added] = file_index.emplace(file, static_cast<uint32_t>(table.files.size()));
+        if (added) {
+            table.files.push_back(file);
+            if (file == options.file_name) {
+                file_lines[it->second] = split_lines(source);
+            } else {
+                std::ifstream in(file, std::ios::binary);
+                std::stringstream text;
+                if (in) text << in.rdbuf();
+                file_lines[it->second] = split_lines(text.str());
+            }
+        }
+        const isa::SourceLocation origin = assembly.line_origin[text_line - 1];
+        table.entries.push_back({static_cast<uint32_t>(ordinals[k]), it->second, origin.line, origin.column});
+        lines_used.insert({it->second, origin.line});
+    }
+    for (const auto& [file, line] : lines_used) {
+        const auto& lines = file_lines[file];
+        if (line > lines.size()) continue;
+        std::string text = lines[line - 1];
+        if (text.size() > kMaxLineText) text = text.substr(0, kMaxLineText - 3) + "...";
+        table.lines.push_back({file, line, std::move(text)});
+    }
+    return table;
+}
+
+// The program with the line table's comment block after its leading comment blocks (the CTAB);
+// left as it is when the table does not fit in one comment block (32767 DWORDs).
+void add_line_table(isa::Program& program, std::vector<uint32_t>& tokens, const isa::LineTable& table) {
+    isa::Instruction block;
+    block.opcode = isa::Opcode::Comment;
+    block.comment = isa::serialize_line_table(table);
+    if (block.comment.size() > 0x7FFF) return;
+    size_t at = 0;
+    while (at < program.instructions.size() && program.instructions[at].opcode == isa::Opcode::Comment) ++at;
+    std::vector<isa::Instruction> instructions = program.instructions;
+    instructions.insert(instructions.begin() + static_cast<long>(at), std::move(block));
+    const isa::Program with_table{program.version, instructions};
+    std::vector<uint32_t> encoded = isa::encode(with_table);
+    auto decoded = isa::decode(encoded);  // token offsets recomputed
+    if (!decoded.ok() || decoded.program->instructions.size() != instructions.size()) return;
+    for (size_t k = 0; k < instructions.size(); ++k) decoded.program->instructions[k].location = instructions[k].location;
+    program = std::move(*decoded.program);
+    tokens = std::move(encoded);
 }
 
 }  // namespace
@@ -111,6 +194,8 @@ CompileResult compile(std::string_view source, const CompileOptions& options) {
     if (!assembled.ok()) return result;
     result.program = std::move(assembled.program);
     result.tokens = std::move(assembled.tokens);
+    if (options.debug_info)
+        add_line_table(*result.program, result.tokens, build_line_table(*result.program, assembly, source, options));
     result.assembly = std::move(assembly.text);
     return result;
 }

@@ -187,9 +187,131 @@ TEST(CliDebug, PixelTextShowsLanesAndSteps) {
     const Result r = sm2("debug " + gradient_stream() + " --frame 0 --pixel 1,2");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("pixel shader of call 12 DrawPrimitiveUP, primitive"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("carry no HLSL line information"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("carries no HLSL line table"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("step 2, line 5: m4x4 r1, r0, c2\n  r1 (xyzw)\n"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("    lane 1 (1, 2): (2.25, 4.5, 5.75, 1)  <- the pixel\n"), std::string::npos) << r.out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The same quad with an hlsl<< pixel shader: the stream's HLSL compiler writes the HLSL line
+// table, so sm2 debug steps by HLSL line. The compiler's code, line by line (its def c2 = (2, 1,
+// 0, 0); light = c0 = (1, 2, 3), tint = c1 = (0.5, 0.25, 1, 2)); at pixel (1, 2), t0 = (1, 2, 0, 1):
+//   line 6  mad r0.xyz, t0, c2.x, -c2.y   n = 2 t - 1                 = (1, 3, -1)
+//   line 7  dp3 r1.x, r0, c0              d = 1*1 + 3*2 - 1*3         = 4
+//   line 8  (tint * d is fused into line 9's mad: no instruction of its own)
+//   line 9  mad r0, c1, r1.x, t0.w        tint * 4 + 1                = (3, 2, 5, 9)
+//           mov oC0, r0                   (the output's copy: the line of the value returned)
+// Lane 0, pixel (0, 2): n = (-1, 3, -1), d = 2, r0 = (2, 1.5, 3, 5).
+const std::string kHlslPixelShader =
+    "float3 light;\n"                     // 1
+    "float4 tint;\n"                      // 2
+    "\n"                                  // 3
+    "float4 main(float4 t : TEXCOORD0) : COLOR\n"  // 4
+    "{\n"                                 // 5
+    "    float3 n = t.xyz * 2 - 1;\n"     // 6
+    "    float d = dot(n, light);\n"      // 7
+    "    float4 c = tint * d;\n"          // 8
+    "    return c + t.w;\n"               // 9
+    "}\n";
+
+std::string hlsl_stream() {
+    std::string text = kGradient;
+    text.replace(text.find("CreatePixelShader ps asm<<END\n" + kPixelShader + "END\n"),
+                 ("CreatePixelShader ps asm<<END\n" + kPixelShader + "END\n").size(),
+                 "CreatePixelShader ps hlsl<<END\n" + kHlslPixelShader + "END\n");
+    text.replace(text.find("SetPixelShaderConstantF 0 f32[ 0.25 0.5 -1 0 ]\n"),
+                 std::string("SetPixelShaderConstantF 0 f32[ 0.25 0.5 -1 0 ]\n").size(),
+                 "SetPixelShaderConstantF 0 f32[ 1 2 3 0   0.5 0.25 1 2 ]\n");
+    const std::string stream = tmp("hlsl_gradient.sm2cs");
+    write_file(stream, text);
+    return stream;
+}
+
+TEST(CliDebug, HlslPixelShaderStepsByHlslLine) {
+    const auto j = run_json("debug " + hlsl_stream() + " --frame 0 --pixel 1,2");
+    ASSERT_TRUE(j.is_object()) << j.dump();
+    EXPECT_NE(j["source"].get<std::string>().find("HLSL"), std::string::npos) << j["source"];
+    ASSERT_EQ(j["steps"].size(), 4u) << j.dump();
+    const std::vector<std::string> texts = {"mad r0.xyz, t0, c2.x, -c2.y", "dp3 r1.x, r0, c0", "mad r0, c1, r1.x, t0.w",
+                                            "mov oC0, r0"};
+    const std::vector<unsigned> lines = {6, 7, 9, 9};
+    for (size_t i = 0; i < texts.size(); ++i) {
+        EXPECT_EQ(j["steps"][i]["text"], texts[i]) << i;
+        ASSERT_TRUE(j["steps"][i]["hlsl"].is_object()) << j["steps"][i].dump();
+        EXPECT_EQ(j["steps"][i]["hlsl"]["file"], "hlsl");
+        EXPECT_EQ(j["steps"][i]["hlsl"]["line"], lines[i]) << texts[i];
+    }
+    EXPECT_EQ(j["steps"][1]["hlsl"]["text"], "    float d = dot(n, light);");
+    // Grouped by line: 6 (step 1), 7 (step 2), 9 (steps 3 and 4).
+    ASSERT_EQ(j["hlsl_lines"].size(), 3u) << j["hlsl_lines"].dump();
+    EXPECT_EQ(j["hlsl_lines"][0]["line"], 6);
+    EXPECT_EQ(j["hlsl_lines"][2]["line"], 9);
+    EXPECT_EQ(j["hlsl_lines"][2]["text"], "    return c + t.w;");
+    EXPECT_EQ(j["hlsl_lines"][2]["steps"], nlohmann::json::parse("[3, 4]"));
+    // The values, worked out above.
+    const auto n = write_of(j["steps"][0], "r0");
+    ASSERT_FALSE(n.is_null());
+    EXPECT_EQ(n["mask"], "xyz");
+    EXPECT_NEAR(n["lanes"][1][0].get<double>(), 1, 1e-6);
+    EXPECT_NEAR(n["lanes"][1][1].get<double>(), 3, 1e-6);
+    EXPECT_NEAR(n["lanes"][1][2].get<double>(), -1, 1e-6);
+    EXPECT_NEAR(write_of(j["steps"][1], "r1")["lanes"][1][0].get<double>(), 4, 1e-6);
+    EXPECT_NEAR(write_of(j["steps"][1], "r1")["lanes"][0][0].get<double>(), 2, 1e-6);
+    expect_vec(write_of(j["steps"][2], "r0")["lanes"][1], 3, 2, 5, 9, "r0 at the pixel");
+    expect_vec(write_of(j["steps"][2], "r0")["lanes"][0], 2, 1.5, 3, 5, "r0 at (0, 2)");
+    expect_vec(write_of(j["steps"][3], "oC0")["lanes"][1], 3, 2, 5, 9, "oC0");
+}
+
+TEST(CliDebug, HlslPixelShaderTextListsEachLinesInstructionsUnderIt) {
+    const Result r = sm2("debug " + hlsl_stream() + " --frame 0 --pixel 1,2");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out.find("carries no HLSL line table"), std::string::npos) << r.out;
+    const size_t line7 = r.out.find("hlsl:7: float d = dot(n, light);\n  step 2, line ");
+    ASSERT_NE(line7, std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(": dp3 r1.x, r0, c0\n    r1 (x)\n      lane 0 (0, 2): (2, 0, 0, 0)\n"
+                         "      lane 1 (1, 2): (4, 0, 0, 0)  <- the pixel\n",
+                         line7),
+              std::string::npos)
+        << r.out;
+    const size_t line9 = r.out.find("hlsl:9: return c + t.w;\n  step 3, line ");
+    ASSERT_NE(line9, std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("  step 4, line ", line9), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("hlsl:8:"), std::string::npos) << "line 8 has no instruction of its own";
+    EXPECT_EQ(r.out.find("hlsl:9:", line9 + 1), std::string::npos) << "one group for line 9";
+    EXPECT_NE(r.out.find("      lane 1 (1, 2): (3, 2, 5, 9)  <- the pixel\n", line9), std::string::npos) << r.out;
+}
+
+TEST(CliDebug, BytecodeFromSm2CompileDebugInfoStepsByHlslLine) {
+    // The same HLSL compiled by sm2 compile, with and without -g, read by the stream as a side
+    // file: with the line table the steps are grouped under ps_lines.hlsl's lines, without it they
+    // are the assembly's.
+    const std::string source = tmp("ps_lines.hlsl");
+    write_file(source, kHlslPixelShader);
+    const std::string with_table = tmp("ps_lines_g.bin"), without_table = tmp("ps_lines.bin");
+    ASSERT_EQ(sm2("compile " + source + " -T ps_2_0 -g -o " + with_table).status, 0);
+    ASSERT_EQ(sm2("compile " + source + " -T ps_2_0 -o " + without_table).status, 0);
+    const std::string with_name = std::filesystem::path(with_table).filename().string();
+    const std::string without_name = std::filesystem::path(without_table).filename().string();
+    std::string text = kGradient;
+    const std::string asm_shader = "CreatePixelShader ps asm<<END\n" + kPixelShader + "END\n";
+    text.replace(text.find(asm_shader), asm_shader.size(), "CreatePixelShader ps @\"" + with_name + "\"\n");
+    const std::string constants = "SetPixelShaderConstantF 0 f32[ 0.25 0.5 -1 0 ]\n";
+    text.replace(text.find(constants), constants.size(), "SetPixelShaderConstantF 0 f32[ 1 2 3 0   0.5 0.25 1 2 ]\n");
+    const std::string stream = tmp("hlsl_bytecode.sm2cs");
+    write_file(stream, text);
+    const Result with = sm2("debug " + stream + " --frame 0 --pixel 1,2");
+    ASSERT_EQ(with.status, 0) << with.err;
+    const size_t line7 = with.out.find(source + ":7: float d = dot(n, light);\n  step 2, line ");
+    ASSERT_NE(line7, std::string::npos) << with.out;
+    EXPECT_NE(with.out.find("      lane 1 (1, 2): (4, 0, 0, 0)  <- the pixel\n", line7), std::string::npos) << with.out;
+    text.replace(text.find(with_name), with_name.size(), without_name);
+    write_file(stream, text);
+    const Result without = sm2("debug " + stream + " --frame 0 --pixel 1,2");
+    ASSERT_EQ(without.status, 0) << without.err;
+    EXPECT_NE(without.out.find("carries no HLSL line table"), std::string::npos) << without.out;
+    EXPECT_EQ(without.out.find(":7: float d"), std::string::npos) << without.out;
+    EXPECT_NE(without.out.find("step 2, line "), std::string::npos) << without.out;
+    EXPECT_NE(without.out.find(": dp3 r1.x, r0, c0\n  r1 (x)\n"), std::string::npos) << without.out;
 }
 
 TEST(CliDebug, VertexShaderOfAKnownVertex) {

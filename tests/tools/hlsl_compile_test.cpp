@@ -333,3 +333,35 @@ TEST(HlslCompile, RunSetsUniformsByTheirNames) {
     expect_near(run_output(ps, "--const tint=1,2,3,4 --const world=0,0,0,0,0,0,0,0,10,20,30,40,0,0,0,0", "oC0"),
                 {11, 22, 33, 44});
 }
+
+TEST(HlslCompile, DebugInfoAddsTheLineTableThatDisAndAsmRoundTrip) {
+    const std::string hlsl = "float3 light;\n"                                   // 1
+                             "float4 main(float3 n : TEXCOORD0) : COLOR\n"        // 2
+                             "{\n"                                                 // 3
+                             "    float d = dot(n, light);\n"                     // 4: dp3
+                             "    return d;\n"                                    // 5: mov oC0
+                             "}\n";
+    const auto plain = compile("lines_plain", hlsl, "ps_2_0");
+    const auto with = compile("lines_g", hlsl, "ps_2_0", "--debug-info");
+    ASSERT_FALSE(plain.empty() || with.empty());
+    const std::string plain_bytes = slurp(plain), with_bytes = slurp(with);
+    EXPECT_GT(with_bytes.size(), plain_bytes.size());
+    const cli_support::Run plain_dis = sm2("dis " + plain);
+    EXPECT_EQ(plain_dis.out.find("SM2L"), std::string::npos) << plain_dis.out;
+    const cli_support::Run dis = sm2("dis " + with);
+    ASSERT_EQ(dis.status, 0) << dis.err;
+    EXPECT_NE(dis.out.find("// SM2L HLSL line table, "), std::string::npos) << dis.out;
+    const std::string source = tmp("lines_g.hlsl");
+    EXPECT_NE(dis.out.find("//   " + source + ":4 (instructions "), std::string::npos) << dis.out;
+    EXPECT_NE(dis.out.find("):     float d = dot(n, light);\n"), std::string::npos) << dis.out;
+    // sm2 asm of sm2 dis's text: the same bytes, the block included.
+    const std::string text = tmp("lines_g.asm"), again = tmp("lines_g_again.bin");
+    write_file(text, dis.out);
+    ASSERT_EQ(sm2("asm " + text + " -o " + again).status, 0);
+    EXPECT_EQ(slurp(again), with_bytes);
+    // The short -g too; and the shader runs the same with the table: d = 1*1 + 2*0.5 + 3*0 = 2.
+    const auto g = compile("lines_short_g", hlsl, "ps_2_0", "-g");
+    ASSERT_FALSE(g.empty());
+    for (const auto& shader : {plain, with, g})
+        expect_near(run_output(shader, "--input t0=1,2,3,0 --const light=1,0.5,0", "oC0"), {2, 2, 2, 2});
+}

@@ -22,6 +22,10 @@ struct CompileOptions {
     isa::ShaderType stage = isa::ShaderType::Pixel;  // vs_2_0 or ps_2_0
     std::vector<std::pair<std::string, std::string>> defines;  // -D NAME=VALUE (value may be empty)
     std::vector<std::string> include_dirs;                       // -I DIR, searched after the file's folder
+    // Adds the HLSL line table (sm2/isa/line_table.h, a comment block 'SM2L' after the CTAB):
+    // each instruction's HLSL file and line, with those lines' text (sm2 compile --debug-info,
+    // always for a command stream's hlsl<<TAG shaders). Off, the bytes do not change.
+    bool debug_info = false;
 };
 
 // A located diagnostic with the number fxc would give it (X3000 is printed as "X3000"); the
@@ -33,7 +37,8 @@ struct Diagnostic : assembler::Diagnostic {
 struct CompileResult {
     std::optional<isa::Program> program;  // set when there were no errors
     std::vector<uint32_t> tokens;         // the bytecode, version .. END, with the CTAB comment
-    std::string assembly;                 // the SM2 assembly the back end produced (empty on error)
+    std::string assembly;                 // the SM2 assembly the back end produced (empty on error;
+                                          // without the line table's comment block)
     std::vector<Diagnostic> diagnostics;  // located at the HLSL source
     [[nodiscard]] bool ok() const { return program.has_value(); }
 };
