@@ -1514,6 +1514,11 @@ private:
         case op::LoopMerge: open_loop(); return;
         case op::Branch: branch_to(w.at(0)); return;
         case op::BranchConditional: open_if(); return;
+        case op::INotEqual:
+        case op::IEqual:
+            throw CompileError(pixel_ ? "a uniform bool or int read as a value (an integer comparison) is not supported in ps_2_0"
+                                      : "a condition on uniform bools other than one bool alone (`b`, `!b`; not `a && b`), or a "
+                                        "uniform bool or int read as a value, is not supported: vs_2_0's `if b#` tests one bool");
         case op::Kill:
             throw CompileError("flow control that depends on run-time values (an if, loop or discard the optimizer "
                                "could not flatten) is not supported by this compiler for " + profile());

@@ -207,6 +207,13 @@ TEST(HlslFlow, LimitsAndUnsupportedFormsAreLocatedErrors) {
                         "vs_2_0");
     EXPECT_NE(err.find("flow_count_value.hlsl(5,1): error: the uniform 'n' decides an `if` or counts a loop"),
               std::string::npos) << err;
+    // Two bools combined: `if b#` tests one.
+    err = compile_error("flow_and",
+                        "bool b;\nbool e;\nfloat4 k;\nfloat4 main(float4 pos : POSITION) : POSITION {\n"
+                        "  float4 a = pos;\n  if (b && e) a = normalize(a * k);\n  return a;\n}\n",
+                        "vs_2_0");
+    EXPECT_NE(err.find("flow_and.hlsl(6,1): error: a condition on uniform bools other than one bool alone"),
+              std::string::npos) << err;
     // break out of a rep.
     err = compile_error("flow_break",
                         "int n;\nbool b;\nfloat4 main(float4 pos : POSITION) : POSITION {\n  float4 acc = pos;\n"
