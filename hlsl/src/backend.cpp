@@ -632,6 +632,7 @@ private:
         std::pair<uint32_t, uint32_t> member;  // the uniform int counted by rep
         uint32_t merge = 0, header = 0;
         size_t back_edge = 0;  // the continue block's branch to the header
+        int constant_count = -1;  // a [loop] with a literal count: rep on a `defi` register instead
     };
     struct Construct {
         bool loop = false;
@@ -799,9 +800,21 @@ private:
             fail_at(i, kLoopForm);
         }
         auto load = uniform_integer_load(bound);
+        int constant_count = -1;
+        if (!load) {  // [loop] keeps a constant-count loop rolled: rep on a defi
+            auto b = constants_.find(bound);
+            if (b == constants_.end() || b->second.opcode != op::Constant ||
+                types_.at(b->second.words.at(0)).opcode != op::TypeInt)
+                fail_at(i, kLoopForm);
+            const auto count = static_cast<int32_t>(b->second.words.at(2));
+            if (count < 0 || count > 255)
+                fail_at(i, "a rolled loop's count must be 0..255 (the range of rep's i#.x), not " + std::to_string(count));
+            constant_count = count;
+            load = std::make_pair(std::make_pair(0u, 0u), std::vector<size_t>{});
+        }
         auto k = defined_at_.find(counter);
         auto t = terminator_of_.find(continue_label);
-        if (!load || k == defined_at_.end() || body_[k->second].opcode != op::Phi || block_of_[k->second] != header ||
+        if (k == defined_at_.end() || body_[k->second].opcode != op::Phi || block_of_[k->second] != header ||
             t == terminator_of_.end())
             fail_at(i, kLoopForm);
         // counter = phi(0 from before the loop, counter + 1 from the continue block)
@@ -832,10 +845,10 @@ private:
         for (size_t p = label_position_.at(header) + 1; p < i; ++p)
             if (body_[p].opcode != op::Phi && std::find(positions.begin(), positions.end(), p) == positions.end())
                 fail_at(p, kLoopForm);
-        flow_int_members_.insert(load->first);
+        if (constant_count < 0) flow_int_members_.insert(load->first);
         skip_.insert(positions.begin(), positions.end());
         consumers.insert(i);
-        loops_[header] = Loop{load->first, merge_label, header, t->second};
+        loops_[header] = Loop{load->first, merge_label, header, t->second, constant_count};
     }
 
     // Values read inside a loop but defined before it (and the header's phis) stay in their
@@ -969,7 +982,8 @@ private:
             throw CompileError("a loop counted by a uniform int inside another such loop: vs_2_0 allows one level of "
                                "rep/loop nesting");
         count_static_flow("rep");
-        line("rep " + flow_register(l->second.member));
+        line("rep " + (l->second.constant_count >= 0 ? "i" + std::to_string(integer_defs_.at(l->second.constant_count))
+                                                      : flow_register(l->second.member)));
         open_.push_back({true, l->second.merge, 0, l->second.header});
     }
 
@@ -1060,6 +1074,15 @@ private:
             }
         }
         first_def_register_ = next;
+        // Rolled loops with literal counts: one defi per count, after the uniform ints.
+        for (auto& [header, loop] : loops_) {
+            if (loop.constant_count < 0) continue;
+            auto known = integer_defs_.find(loop.constant_count);
+            if (known == integer_defs_.end()) {
+                if (next_int > 15) throw CompileError("more than 16 integer registers (i0-i15) for loop counts");
+                known = integer_defs_.emplace(loop.constant_count, next_int++).first;
+            }
+        }
     }
 
     // A global's initializer when the source writes it as literal numbers: `= 0.5`,
@@ -1921,6 +1944,8 @@ private:
             head.push_back("def c" + std::to_string(reg) + ", " + format_float(defs_[r][0]) + ", " + format_float(defs_[r][1]) +
                            ", " + format_float(defs_[r][2]) + ", " + format_float(defs_[r][3]));
         }
+        for (const auto& [count, reg] : integer_defs_)
+            head.push_back("defi i" + std::to_string(reg) + ", " + std::to_string(count) + ", 0, 0, 0");
         for (const auto& h : head) {
             out.text += h + "\n";
             out.origin.push_back(entry_location_);
@@ -1993,6 +2018,7 @@ private:
     std::map<uint32_t, Loop> loops_;              // header label -> loop
     std::set<std::pair<uint32_t, uint32_t>> flow_bool_members_, flow_int_members_;
     std::map<std::pair<uint32_t, uint32_t>, std::string> flow_registers_;  // member -> "b0", "i0"
+    std::map<int, int> integer_defs_;  // rolled loop count -> i# of its defi
     std::vector<Construct> open_;
     int static_flow_count_ = 0;
     size_t position_ = 0;

@@ -221,3 +221,31 @@ TEST(HlslFlow, LimitsAndUnsupportedFormsAreLocatedErrors) {
                         "vs_2_0");
     EXPECT_NE(err.find("flow_break.hlsl(5,1): error: break, continue or return"), std::string::npos) << err;
 }
+
+TEST(HlslFlow, LoopAttributeKeepsAConstantCountLoopRolled) {
+    // Loops with literal bounds are unrolled, except under [loop]: rep on a defi register, numbered
+    // after the uniform ints (count is i0, the literal 3 is i1).
+    const auto vs = compile("flow_rolled",
+                            "int count;\nfloat4 step;\n"
+                            "float4 main(float4 pos : POSITION, out float4 col : COLOR0) : POSITION {\n"
+                            "  float4 acc = pos;\n"
+                            "  [loop] for (int k = 0; k < 3; ++k) acc = acc * 0.5 + step;\n"
+                            "  for (int j = 0; j < count; ++j) acc += 1;\n"
+                            "  col = acc;\n  return pos;\n}\n",
+                            "vs_2_0");
+    ASSERT_FALSE(vs.empty());
+    const auto lines = disassembly(vs);
+    EXPECT_TRUE(has_line(lines, "defi i1, 3, 0, 0, 0")) << ::testing::PrintToString(lines);
+    EXPECT_EQ(flow_lines(lines), (std::vector<std::string>{"rep i1", "endrep", "rep i0", "endrep"}));
+    // Three halvings towards 2 from (16, 8, 4, 0): (3.75, 2.75, 2.25, 1.75); then + 1 per count.
+    const std::string args = " --const step=1,1,1,1 --input v0=16,8,4,0";
+    expect_near(run_output(vs, "--int i0=0" + args, "oD0"), {3.75f, 2.75f, 2.25f, 1.75f});
+    expect_near(run_output(vs, "--int i0=2" + args, "oD0"), {5.75f, 4.75f, 4.25f, 3.75f});
+    // A rolled count past rep's 255.
+    const std::string err = compile_error("flow_rolled_300",
+                                          "float4 main(float4 pos : POSITION) : POSITION {\n  float4 acc = pos;\n"
+                                          "  [loop] for (int k = 0; k < 300; ++k) acc += 1;\n  return acc;\n}\n",
+                                          "vs_2_0");
+    EXPECT_NE(err.find("flow_rolled_300.hlsl(3,1): error: a rolled loop's count must be 0..255"), std::string::npos)
+        << err;
+}
