@@ -2,7 +2,9 @@
 // a `def` literal) seen through a swizzle and an optional negation, so extracts, shuffles and
 // negations cost no instruction. Temps are allocated when a value is defined and freed after its
 // last use; a temp is never reused within the instruction that frees it, so multi-instruction
-// sequences (and nrm/pow/crs, whose dest may not be a source) are safe.
+// sequences (and nrm/pow/crs, whose dest may not be a source) are safe. vs_2_0's static flow
+// control follows the structured SPIR-V in block order (analyze_flow): a phi is a temp written by
+// a mov on each incoming edge, and values a loop reads stay live to its back edge.
 #include "backend.h"
 
 #include "sm2/isa/constant_table.h"
@@ -40,7 +42,8 @@ constexpr uint32_t Undef = 1, Name = 5, MemberName = 6, String = 7, Line = 8, Ex
                    FNegate = 127, FAdd = 129, FSub = 131, FMul = 133, FDiv = 136, VectorTimesScalar = 142,
                    VectorTimesMatrix = 144, MatrixTimesVector = 145, Dot = 148, LogicalNot = 168,
                    Select = 169, FOrdEqual = 180, FUnordGreaterThanEqual = 191, Label = 248, Return = 253, SelectionMerge = 247, LoopMerge = 246, Branch = 249,
-                   BranchConditional = 250, Kill = 252,
+                   BranchConditional = 250, Kill = 252, Phi = 245, IAdd = 128, IEqual = 170, INotEqual = 171,
+                   SGreaterThan = 173, SLessThan = 177,
                    NoLine = 317, DecorateString = 5632;
 }  // namespace op
 namespace decoration {
@@ -567,6 +570,7 @@ private:
     std::vector<uint32_t> operand_ids(const SpirvInstruction& ins) const {
         std::vector<uint32_t> ids;
         size_t first = 2;  // result type, result id
+        if (ins.opcode == op::Phi) return ids;  // counted at the predecessors' branches (incoming_uses_)
         if (ins.opcode == op::Store) first = 0;
         if (ins.opcode == op::ExtInst) first = 4;
         for (size_t k = first; k < ins.words.size(); ++k) ids.push_back(ins.words[k]);
@@ -576,6 +580,8 @@ private:
     }
 
     void generate() {
+        // Blocks, uses, and the branches and loops that become if b# / rep i# (vs_2_0).
+        analyze_flow();
         // Uniform registers: the $Global members in declaration order, then the literals.
         assign_uniform_registers();
         // Last uses, with a mul folded into the add that is its only user (mad) counted at the add.
@@ -586,6 +592,10 @@ private:
                 last_use_[id] = i;
                 ++use_count[id];
             }
+            for (uint32_t id : incoming_uses_[i]) {  // phi operands, moved at the predecessor's branch
+                last_use_[id] = std::max(last_use_[id], i);
+                ++use_count[id];
+            }
             if (body_[i].words.size() >= 2) definition[body_[i].words[1]] = i;
         }
         for (size_t i = 0; i < body_.size(); ++i) {
@@ -594,7 +604,7 @@ private:
             for (int k = 2; k < 4; ++k) {
                 const uint32_t id = ins.words[static_cast<size_t>(k)];
                 auto d = definition.find(id);
-                if (d == definition.end() || use_count[id] != 1) continue;
+                if (d == definition.end() || use_count[id] != 1 || block_of_[d->second] != block_of_[i]) continue;
                 const auto& m = body_[d->second];
                 if (m.opcode != op::FMul && m.opcode != op::VectorTimesScalar) continue;
                 if (fused_.count(id) || fused_.count(m.words[2]) || fused_.count(m.words[3])) continue;
@@ -603,7 +613,7 @@ private:
                 break;
             }
         }
-        size_t labels = 0;
+        extend_live_ranges_over_loops();
         // For the line table: the line of each value's definition. glslang's entry-point wrapper
         // stores the outputs with the line of the function's opening brace; such a store is
         // given the line of the value stored (the `return` expression's), when that has one.
@@ -611,6 +621,7 @@ private:
         for (size_t i = 0; i < body_.size(); ++i) {
             const auto& ins = body_[i];
             location_ = ins.location.line ? ins.location : entry_location_;
+            position_ = i;
             if (ins.location.line) {  // else the line table keeps the last known line (the optimizer dropped it)
                 line_location_ = ins.location;
                 location_file_ = ins.file;
@@ -624,11 +635,10 @@ private:
                     location_file_ = defined->second.second;
                 }
             }
-            if (ins.opcode == op::Label && ++labels > 1)
-                throw CompileError("flow control that depends on run-time values (an if, loop or discard the optimizer "
-                                   "could not flatten) is not supported by this compiler for " + profile());
-            translate(ins);
-            release_after(i, operand_ids(ins));
+            if (!skip_.count(i)) translate(ins);
+            std::vector<uint32_t> used = operand_ids(ins);
+            used.insert(used.end(), incoming_uses_[i].begin(), incoming_uses_[i].end());
+            release_after(i, used);
             if (ins.words.size() >= 2 && !last_use_.count(ins.words[1])) {
                 auto v = values_.find(ins.words[1]);
                 if (v != values_.end() && v->second.kind == Value::Kind::Register && v->second.file == 'r' &&
@@ -637,6 +647,385 @@ private:
             }
         }
         location_ = entry_location_;
+    }
+
+    // ---- static flow control (vs_2_0): if b#, rep i# ------------------------------------------
+    struct FlowBool {
+        std::pair<uint32_t, uint32_t> member;  // ($Global struct type, member index)
+        bool negate = false;
+        std::vector<size_t> positions;  // the instructions that compute the condition (not translated)
+    };
+    struct Loop {
+        std::pair<uint32_t, uint32_t> member;  // the uniform int counted by rep
+        uint32_t merge = 0, header = 0;
+        size_t back_edge = 0;  // the continue block's branch to the header
+        int constant_count = -1;  // a [loop] with a literal count: rep on a `defi` register instead
+    };
+    struct Construct {
+        bool loop = false;
+        uint32_t merge = 0, else_label = 0, header = 0;
+    };
+
+    static bool has_result_id(uint32_t opcode) {
+        return opcode != op::Store && opcode != op::Branch && opcode != op::BranchConditional &&
+               opcode != op::SelectionMerge && opcode != op::LoopMerge && opcode != op::Label &&
+               opcode != op::Return && opcode != op::FunctionEnd && opcode != op::Kill;
+    }
+
+    bool is_integer_constant(uint32_t id, uint32_t value) const {
+        auto c = constants_.find(id);
+        if (c == constants_.end() || types_.at(c->second.words.at(0)).opcode != op::TypeInt) return false;
+        if (c->second.opcode == op::ConstantNull) return value == 0;
+        return c->second.opcode == op::Constant && c->second.words.at(2) == value;
+    }
+
+    // `id` = OpLoad of one scalar integer member of the $Global block: (struct type, member), and
+    // the positions of the load and its access chain.
+    std::optional<std::pair<std::pair<uint32_t, uint32_t>, std::vector<size_t>>> uniform_integer_load(uint32_t id) const {
+        auto d = defined_at_.find(id);
+        if (d == defined_at_.end() || body_[d->second].opcode != op::Load) return std::nullopt;
+        const auto& load = body_[d->second];
+        if (types_.at(load.words.at(0)).opcode != op::TypeInt) return std::nullopt;
+        auto a = defined_at_.find(load.words.at(2));
+        if (a == defined_at_.end()) return std::nullopt;
+        const auto& chain = body_[a->second];
+        if ((chain.opcode != op::AccessChain && chain.opcode != op::InBoundsAccessChain) || chain.words.size() != 4)
+            return std::nullopt;
+        auto var = variables_.find(chain.words[2]);
+        if (var == variables_.end() || var->second.second != kStorageUniform) return std::nullopt;
+        const uint32_t block = types_.at(var->second.first).element;
+        auto index = constants_.find(chain.words[3]);
+        if (types_.at(block).opcode != op::TypeStruct || index == constants_.end() || index->second.opcode != op::Constant)
+            return std::nullopt;
+        return std::make_pair(std::make_pair(block, index->second.words.at(2)), std::vector<size_t>{d->second, a->second});
+    }
+
+    // A condition that is a uniform `bool` (glslang: uint != 0), possibly negated.
+    std::optional<FlowBool> uniform_bool_condition(uint32_t id) const {
+        auto d = defined_at_.find(id);
+        if (d == defined_at_.end()) return std::nullopt;
+        const auto& ins = body_[d->second];
+        const bool splat = ins.opcode == op::CompositeConstruct && ins.words.size() > 2 &&
+                           std::all_of(ins.words.begin() + 2, ins.words.end(), [&](uint32_t c) { return c == ins.words[2]; });
+        if (ins.opcode == op::LogicalNot || splat) {  // !b, or b splat to a bool vector for a select
+            auto inner = uniform_bool_condition(ins.words.at(2));
+            if (!inner) return std::nullopt;
+            inner->negate = inner->negate != (ins.opcode == op::LogicalNot);
+            inner->positions.push_back(d->second);
+            return inner;
+        }
+        if (ins.opcode != op::INotEqual && ins.opcode != op::IEqual) return std::nullopt;
+        const uint32_t a = ins.words.at(2), b = ins.words.at(3);
+        const uint32_t loaded = is_integer_constant(b, 0) ? a : is_integer_constant(a, 0) ? b : 0;
+        auto load = loaded ? uniform_integer_load(loaded) : std::nullopt;
+        if (!load || !declared_bool(member_name(load->first.first, load->first.second))) return std::nullopt;
+        FlowBool f;
+        f.member = load->first;
+        f.negate = ins.opcode == op::IEqual;
+        f.positions = load->second;
+        f.positions.push_back(d->second);
+        return f;
+    }
+
+    [[noreturn]] void fail_at(size_t position, const std::string& message) {
+        location_ = body_[position].location.line ? body_[position].location : entry_location_;
+        throw CompileError(message);
+    }
+
+    static constexpr const char* kLoopForm =
+        "a loop whose count is not a compile-time constant must read `for (int i = 0; i < n; i++)` with n a "
+        "uniform int (it becomes vs_2_0's `rep i#`), and i may only count: SM2 cannot read a loop counter as a value";
+
+    // Blocks, uses, and (vs_2_0) the branches on uniform bools and the loops counted by uniform ints.
+    void analyze_flow() {
+        uint32_t block = 0;
+        block_of_.assign(body_.size(), 0);
+        std::map<uint32_t, std::vector<size_t>> phis;
+        for (size_t i = 0; i < body_.size(); ++i) {
+            const auto& ins = body_[i];
+            if (ins.opcode == op::Label) {
+                block = ins.words.at(0);
+                label_position_[block] = i;
+            }
+            block_of_[i] = block;
+            if (has_result_id(ins.opcode) && ins.words.size() >= 2) defined_at_[ins.words[1]] = i;
+            if (ins.opcode == op::Phi) phis[block].push_back(i);
+            if (ins.opcode == op::Branch || ins.opcode == op::BranchConditional) terminator_of_[block] = i;
+            for (uint32_t id : operand_ids(ins)) uses_[id].push_back(i);
+        }
+        for (const auto& [label, positions] : phis)
+            for (size_t p : positions) {
+                const auto& w = body_[p].words;
+                std::vector<std::pair<uint32_t, uint32_t>> incoming;
+                for (size_t k = 2; k + 1 < w.size(); k += 2) {
+                    auto t = terminator_of_.find(w[k + 1]);
+                    if (t == terminator_of_.end()) fail_at(p, "internal error: a phi from an unknown block");
+                    incoming_uses_[t->second].push_back(w[k]);
+                    uses_[w[k]].push_back(p);
+                    incoming.emplace_back(w[k], w[k + 1]);
+                }
+                phi_incoming_[w.at(1)] = std::move(incoming);
+                phis_of_[label].push_back(p);
+            }
+        if (pixel_) {  // ps_2_0 has no flow control: the first branch the optimizer left is the error
+            for (size_t i = 0; i < body_.size(); ++i)
+                if (body_[i].opcode == op::SelectionMerge || body_[i].opcode == op::LoopMerge) {
+                    position_ = i;
+                    location_ = body_[i].location.line ? body_[i].location : entry_location_;
+                    no_flow_control();
+                }
+            return;
+        }
+
+        std::set<size_t> consumers;  // the branches and selects that read a b#/i# condition
+        for (size_t i = 0; i < body_.size(); ++i) {
+            const auto& ins = body_[i];
+            const bool selection = ins.opcode == op::BranchConditional && i > 0 && body_[i - 1].opcode == op::SelectionMerge;
+            if (selection || ins.opcode == op::Select) {
+                auto f = uniform_bool_condition(ins.words.at(selection ? 0 : 2));
+                if (!f) continue;
+                flow_bool_members_.insert(f->member);
+                skip_.insert(f->positions.begin(), f->positions.end());
+                consumers.insert(i);
+                bool_conditions_[i] = std::move(*f);
+            } else if (ins.opcode == op::LoopMerge) {
+                analyze_loop(i, consumers);
+            }
+        }
+        // The loads and comparisons skipped above feed only those branches: a uniform in b#/i#
+        // has no c# register to be read from as a value.
+        for (size_t p : skip_) {
+            if (!has_result_id(body_[p].opcode)) continue;
+            const uint32_t id = body_[p].words.at(1);
+            for (size_t use : uses_[id])
+                if (!skip_.count(use) && !consumers.count(use)) {
+                    const auto load = uniform_integer_load(id);
+                    const std::string name = load ? " '" + member_name(load->first.first, load->first.second) + "'" : "";
+                    fail_at(use, "the uniform" + name + " decides an `if` or counts a loop (a b# or i# register in "
+                                 "vs_2_0) and cannot also be read as a value here");
+                }
+        }
+    }
+
+    void analyze_loop(size_t i, std::set<size_t>& consumers) {
+        const auto& merge = body_[i];
+        const uint32_t header = block_of_[i], merge_label = merge.words.at(0), continue_label = merge.words.at(1);
+        if (i + 1 >= body_.size() || body_[i + 1].opcode != op::BranchConditional) fail_at(i, kLoopForm);
+        const auto& branch = body_[i + 1].words;
+        if (branch.at(2) != merge_label || branch.at(1) == merge_label) fail_at(i, kLoopForm);
+        auto c = defined_at_.find(branch.at(0));
+        if (c == defined_at_.end()) fail_at(i, kLoopForm);
+        const auto& compare = body_[c->second];
+        uint32_t counter = 0, bound = 0;
+        if (compare.opcode == op::SLessThan) {
+            counter = compare.words.at(2);
+            bound = compare.words.at(3);
+        } else if (compare.opcode == op::SGreaterThan) {
+            counter = compare.words.at(3);
+            bound = compare.words.at(2);
+        } else {
+            fail_at(i, kLoopForm);
+        }
+        auto load = uniform_integer_load(bound);
+        int constant_count = -1;
+        if (!load) {  // [loop] keeps a constant-count loop rolled: rep on a defi
+            auto b = constants_.find(bound);
+            if (b == constants_.end() || b->second.opcode != op::Constant ||
+                types_.at(b->second.words.at(0)).opcode != op::TypeInt)
+                fail_at(i, kLoopForm);
+            const auto count = static_cast<int32_t>(b->second.words.at(2));
+            if (count < 0 || count > 255)
+                fail_at(i, "a rolled loop's count must be 0..255 (the range of rep's i#.x), not " + std::to_string(count));
+            constant_count = count;
+            load = std::make_pair(std::make_pair(0u, 0u), std::vector<size_t>{});
+        }
+        auto k = defined_at_.find(counter);
+        auto t = terminator_of_.find(continue_label);
+        if (k == defined_at_.end() || body_[k->second].opcode != op::Phi || block_of_[k->second] != header ||
+            t == terminator_of_.end())
+            fail_at(i, kLoopForm);
+        // counter = phi(0 from before the loop, counter + 1 from the continue block)
+        size_t increment = 0;
+        for (const auto& [value, from] : phi_incoming_.at(counter)) {
+            if (from == continue_label) {
+                auto d = defined_at_.find(value);
+                if (d == defined_at_.end() || body_[d->second].opcode != op::IAdd) fail_at(i, kLoopForm);
+                const auto& add = body_[d->second].words;
+                if (!((add.at(2) == counter && is_integer_constant(add.at(3), 1)) ||
+                      (add.at(3) == counter && is_integer_constant(add.at(2), 1))))
+                    fail_at(i, kLoopForm);
+                increment = d->second;
+            } else if (!is_integer_constant(value, 0)) {
+                fail_at(i, kLoopForm);
+            }
+        }
+        if (!increment || phi_incoming_.at(counter).size() != 2) fail_at(i, kLoopForm);
+        for (size_t use : uses_[counter])
+            if (use != c->second && use != increment)
+                fail_at(use, "the loop counter of a loop counted by a uniform int (`rep i#`) cannot be read as a value: "
+                             "SM2 has no integer registers to read it from");
+        for (size_t use : uses_[body_[increment].words.at(1)])
+            if (use != k->second) fail_at(use, kLoopForm);
+        std::vector<size_t> positions = load->second;
+        positions.insert(positions.end(), {k->second, increment, c->second, i + 1});
+        // The header holds the phis and the test only: rep has no place for other code there.
+        for (size_t p = label_position_.at(header) + 1; p < i; ++p)
+            if (body_[p].opcode != op::Phi && std::find(positions.begin(), positions.end(), p) == positions.end())
+                fail_at(p, kLoopForm);
+        if (constant_count < 0) flow_int_members_.insert(load->first);
+        skip_.insert(positions.begin(), positions.end());
+        consumers.insert(i);
+        loops_[header] = Loop{load->first, merge_label, header, t->second, constant_count};
+    }
+
+    // Values read inside a loop but defined before it (and the header's phis) stay in their
+    // registers until the loop's last instruction: the body runs again after their last use.
+    void extend_live_ranges_over_loops() {
+        for (const auto& [header, loop] : loops_) {
+            const size_t start = label_position_.at(header);
+            for (size_t p = start; p <= loop.back_edge; ++p) {
+                std::vector<uint32_t> used = operand_ids(body_[p]);
+                used.insert(used.end(), incoming_uses_[p].begin(), incoming_uses_[p].end());
+                for (uint32_t id : used) {
+                    auto d = defined_at_.find(id);
+                    if (d == defined_at_.end() || d->second < start ||
+                        (body_[d->second].opcode == op::Phi && block_of_[d->second] == header))
+                        last_use_[id] = std::max(last_use_[id], loop.back_edge);
+                }
+            }
+        }
+    }
+
+    std::string flow_register(const std::pair<uint32_t, uint32_t>& member) const {
+        auto r = flow_registers_.find(member);
+        if (r == flow_registers_.end()) throw CompileError("internal error: a flow-control uniform without a register");
+        return r->second;
+    }
+
+    void count_static_flow(const char* what) {
+        if (++static_flow_count_ > 16)
+            throw CompileError(std::string("this `") + what + "` is the 17th static flow control instruction (each if, "
+                               "else and rep counts one): vs_2_0 allows 16");
+    }
+
+    // OpLabel: an open if's else arm starts, or a construct's merge block ends it.
+    void enter_block(uint32_t label) {
+        if (open_.empty()) return;
+        Construct& c = open_.back();
+        if (!c.loop && c.else_label == label) {
+            count_static_flow("else");
+            line("else");
+            c.else_label = 0;
+        } else if (c.merge == label) {
+            if (c.else_label) throw CompileError("internal error: an if's blocks out of order");
+            if (!c.loop) line("endif");
+            open_.pop_back();
+        }
+    }
+
+    // The phis of `target` take their values for the edge from the current block.
+    void branch_phis(uint32_t target) {
+        auto phis = phis_of_.find(target);
+        if (phis == phis_of_.end()) return;
+        const uint32_t from = block_of_[position_];
+        std::vector<std::pair<Value, Value>> moves;  // (phi register, value)
+        for (size_t p : phis->second) {
+            if (skip_.count(p)) continue;
+            const uint32_t phi = body_[p].words.at(1);
+            for (const auto& [value_id, pred] : phi_incoming_.at(phi)) {
+                if (pred != from) continue;
+                auto r = phi_registers_.find(phi);
+                if (r == phi_registers_.end()) {
+                    Value reg;
+                    reg.kind = Value::Kind::Register;
+                    reg.file = 'r';
+                    reg.index = allocate_temp();
+                    reg.count = type_of_value_components(body_[p].words.at(0));
+                    if (reg.count == 1) reg.swizzle = {0, 0, 0, 0};
+                    r = phi_registers_.emplace(phi, reg).first;
+                }
+                moves.emplace_back(r->second, as_register(value_id));
+            }
+        }
+        // A phi's value may be another phi's register (a swap): copy those first.
+        for (auto& [reg, v] : moves)
+            for (const auto& [other, unused] : moves)
+                if (v.file == 'r' && v.index == other.index && &other.index != &reg.index) {
+                    v = materialize(v, mask_of(reg.count));
+                    break;
+                }
+        for (const auto& [reg, v] : moves)
+            if (!(v.file == 'r' && v.index == reg.index && v.swizzle == reg.swizzle && !v.negate))
+                emit("mov", temp_name(reg), mask_of(reg.count), {v});
+    }
+
+    void branch_to(uint32_t target) {
+        branch_phis(target);
+        const bool next = position_ + 1 < body_.size() && body_[position_ + 1].opcode == op::Label &&
+                          body_[position_ + 1].words.at(0) == target;
+        if (!open_.empty() && open_.back().loop && target == open_.back().header) {
+            line("endrep");
+            return;
+        }
+        if (!open_.empty() && !open_.back().loop && target == open_.back().merge) return;
+        if (!next || std::any_of(open_.begin(), open_.end(), [&](const Construct& c) { return c.merge == target; }))
+            throw CompileError("break, continue or return inside an if or loop is not supported by this compiler");
+    }
+
+    [[noreturn]] void no_flow_control() const {
+        if (pixel_)
+            throw CompileError("ps_2_0 has no flow control: this branch or loop depends on a value the optimizer could "
+                               "not fold (vs_2_0 compiles an if on a uniform bool to `if b#` and a loop counted by a "
+                               "uniform int to `rep i#`)");
+        throw CompileError("flow control that depends on run-time values (an if, loop or discard the optimizer "
+                           "could not flatten) is not supported by this compiler for vs_2_0, except an if on a "
+                           "uniform bool (`if b#`) and a loop counted by a uniform int (`rep i#`)");
+    }
+
+    void open_if() {
+        auto c = bool_conditions_.find(position_);
+        if (c == bool_conditions_.end()) no_flow_control();
+        const auto& w = body_[position_].words;
+        const uint32_t merge = body_[position_ - 1].words.at(0);
+        uint32_t first = w.at(1), second = w.at(2);
+        bool negate = c->second.negate;
+        if (first == merge) {
+            std::swap(first, second);
+            negate = !negate;
+        }
+        if (second == merge) branch_phis(merge);  // no else arm: the values for skipping the if
+        if (first == merge) return;
+        if (position_ + 1 >= body_.size() || body_[position_ + 1].opcode != op::Label || body_[position_ + 1].words.at(0) != first)
+            throw CompileError("internal error: an if's blocks out of order");
+        count_static_flow("if");
+        line(std::string("if ") + (negate ? "!" : "") + flow_register(c->second.member));
+        open_.push_back({false, merge, second == merge ? 0 : second, 0});
+    }
+
+    void open_loop() {
+        auto l = loops_.find(block_of_[position_]);
+        if (l == loops_.end()) no_flow_control();
+        if (std::any_of(open_.begin(), open_.end(), [](const Construct& c) { return c.loop; }))
+            throw CompileError("a loop counted by a uniform int inside another such loop: vs_2_0 allows one level of "
+                               "rep/loop nesting");
+        count_static_flow("rep");
+        line("rep " + (l->second.constant_count >= 0 ? "i" + std::to_string(integer_defs_.at(l->second.constant_count))
+                                                      : flow_register(l->second.member)));
+        open_.push_back({true, l->second.merge, 0, l->second.header});
+    }
+
+    // select(uniform bool, x, y) in vs_2_0: if b# / mov / else / mov / endif.
+    void select_on_bool(uint32_t result, const FlowBool& condition, const Value& x, const Value& y, uint32_t count) {
+        Value d = new_temp(count);
+        count_static_flow("if");
+        line(std::string("if ") + (condition.negate ? "!" : "") + flow_register(condition.member));
+        emit("mov", temp_name(d), mask_of(count), {x});
+        count_static_flow("else");
+        line("else");
+        emit("mov", temp_name(d), mask_of(count), {y});
+        line("endif");
+        if (count == 1) d.swizzle = {0, 0, 0, 0};
+        define(result, d);
     }
 
     void assign_uniform_registers() {
@@ -651,7 +1040,7 @@ private:
                     bound_samplers.insert(static_cast<int>(d->second.at(decoration::Binding)));
             }
         }
-        int next_sampler = 0;
+        int next_sampler = 0, next_bool = 0, next_int = 0;
         for (const auto& [id, var] : variables_) {
             const auto [pointer_type, storage] = var;
             const uint32_t pointee_id = types_.at(pointer_type).element;
@@ -659,6 +1048,23 @@ private:
             if (storage == kStorageUniform && pointee.opcode == op::TypeStruct) {
                 for (size_t m = 0; m < pointee.members.size(); ++m) {
                     const auto member = static_cast<uint32_t>(m);
+                    const bool flow_bool = flow_bool_members_.count({pointee_id, member}) > 0;
+                    if (flow_bool || flow_int_members_.count({pointee_id, member})) {
+                        // Decides an if (b#) or counts a rep (i#): that register only, no c#.
+                        int& counter = flow_bool ? next_bool : next_int;
+                        if (counter > 15)
+                            throw CompileError(std::string("more than 16 uniform ") + (flow_bool ? "bools in if conditions (b0-b15)" : "ints counting loops (i0-i15)"));
+                        isa::ConstantInfo info;
+                        info.name = member_name(pointee_id, member);
+                        info.register_set = flow_bool ? isa::ConstantRegisterSet::Bool : isa::ConstantRegisterSet::Int4;
+                        info.register_index = static_cast<uint16_t>(counter);
+                        info.register_count = 1;
+                        info.type = constant_type(pointee.members[m], false);
+                        if (flow_bool) info.type.parameter_type = isa::parameter_type::Bool;
+                        flow_registers_[{pointee_id, member}] = (flow_bool ? "b" : "i") + std::to_string(counter++);
+                        constants_table_.push_back(std::move(info));
+                        continue;
+                    }
                     member_register_[{pointee_id, member}] = next;
                     const bool spirv_row_major = member_decorations_[pointee_id][member].count(decoration::RowMajor) > 0;
                     const uint32_t size = register_size(pointee.members[m], spirv_row_major);
@@ -695,6 +1101,15 @@ private:
             }
         }
         first_def_register_ = next;
+        // Rolled loops with literal counts: one defi per count, after the uniform ints.
+        for (auto& [header, loop] : loops_) {
+            if (loop.constant_count < 0) continue;
+            auto known = integer_defs_.find(loop.constant_count);
+            if (known == integer_defs_.end()) {
+                if (next_int > 15) throw CompileError("more than 16 integer registers (i0-i15) for loop counts");
+                known = integer_defs_.emplace(loop.constant_count, next_int++).first;
+            }
+        }
     }
 
     // A global's initializer when the source writes it as literal numbers: `= 0.5`,
@@ -971,7 +1386,7 @@ private:
         const auto& w = ins.words;
         auto result_count = [&] { return type_of_value_components(w.at(0)); };
         switch (ins.opcode) {
-        case op::Label:
+        case op::Label: enter_block(w.at(0)); return;
         case op::Return:
         case op::FunctionEnd:
         case op::Variable: return;
@@ -1107,6 +1522,11 @@ private:
             return;
         }
         case op::Select: {
+            auto flow = bool_conditions_.find(position_);
+            if (flow != bool_conditions_.end()) {
+                select_on_bool(w.at(1), flow->second, as_register(w.at(3)), as_register(w.at(4)), result_count());
+                return;
+            }
             const Value c = value(w.at(2));
             if (c.kind != Value::Kind::Condition) throw CompileError("a condition SM2 cannot evaluate without branches");
             define(w.at(1), select(c, as_register(w.at(3)), as_register(w.at(4)), result_count()));
@@ -1134,10 +1554,21 @@ private:
             return;
         }
         case op::ExtInst: extended(ins); return;
-        case op::SelectionMerge:
-        case op::LoopMerge:
-        case op::Branch:
-        case op::BranchConditional:
+        case op::Phi: {
+            auto r = phi_registers_.find(w.at(1));
+            if (r == phi_registers_.end()) throw CompileError("internal error: a phi no branch assigned");
+            define(w.at(1), r->second);
+            return;
+        }
+        case op::SelectionMerge: return;  // the branch that follows opens the if
+        case op::LoopMerge: open_loop(); return;
+        case op::Branch: branch_to(w.at(0)); return;
+        case op::BranchConditional: open_if(); return;
+        case op::INotEqual:
+        case op::IEqual:
+            throw CompileError(pixel_ ? "a uniform bool or int read as a value (an integer comparison) is not supported in ps_2_0"
+                                      : "a condition on uniform bools other than one bool alone (`b`, `!b`; not `a && b`), or a "
+                                        "uniform bool or int read as a value, is not supported: vs_2_0's `if b#` tests one bool");
         case op::Kill:
             throw CompileError("flow control that depends on run-time values (an if, loop or discard the optimizer "
                                "could not flatten) is not supported by this compiler for " + profile());
@@ -1179,6 +1610,10 @@ private:
             throw CompileError("indexing an input, output or local array is not supported");
         if (t.opcode == op::TypeStruct) {
             if (index >= t.members.size()) throw CompileError("internal error: member out of range");
+            auto flow = flow_registers_.find({p.pointee, index});
+            if (flow != flow_registers_.end())
+                throw CompileError("the uniform '" + member_name(p.pointee, index) + "' lives in " + flow->second +
+                                   " (it decides an if or counts a loop) and cannot also be read as a value");
             p.index = static_cast<int>(member_register_.at({p.pointee, index}));
             const auto& md = member_decorations_[p.pointee][index];
             p.row_major = md.count(decoration::RowMajor) > 0;
@@ -1536,6 +1971,8 @@ private:
             head.push_back("def c" + std::to_string(reg) + ", " + format_float(defs_[r][0]) + ", " + format_float(defs_[r][1]) +
                            ", " + format_float(defs_[r][2]) + ", " + format_float(defs_[r][3]));
         }
+        for (const auto& [count, reg] : integer_defs_)
+            head.push_back("defi i" + std::to_string(reg) + ", " + std::to_string(count) + ", 0, 0, 0");
         for (const auto& h : head) {
             out.text += h + "\n";
             out.origin.push_back(entry_location_);
@@ -1600,6 +2037,24 @@ private:
     std::vector<std::array<float, 4>> defs_;
     std::vector<uint32_t> def_used_;
     std::vector<bool> def_scalar_;
+
+    // Flow control: blocks, uses, and what analyze_flow found.
+    std::vector<uint32_t> block_of_;                          // per body_ position: its block's label
+    std::unordered_map<uint32_t, size_t> label_position_, terminator_of_, defined_at_;
+    std::unordered_map<uint32_t, std::vector<size_t>> uses_;  // id -> positions that read it
+    std::unordered_map<size_t, std::vector<uint32_t>> incoming_uses_;  // branch position -> phi values it moves
+    std::unordered_map<uint32_t, std::vector<std::pair<uint32_t, uint32_t>>> phi_incoming_;  // phi -> (value, block)
+    std::unordered_map<uint32_t, std::vector<size_t>> phis_of_;  // block -> its phis' positions
+    std::unordered_map<uint32_t, Value> phi_registers_;
+    std::set<size_t> skip_;  // positions not translated (conditions and counters b#/i# replace)
+    std::map<size_t, FlowBool> bool_conditions_;  // branch or select position -> its uniform bool
+    std::map<uint32_t, Loop> loops_;              // header label -> loop
+    std::set<std::pair<uint32_t, uint32_t>> flow_bool_members_, flow_int_members_;
+    std::map<std::pair<uint32_t, uint32_t>, std::string> flow_registers_;  // member -> "b0", "i0"
+    std::map<int, int> integer_defs_;  // rolled loop count -> i# of its defi
+    std::vector<Construct> open_;
+    int static_flow_count_ = 0;
+    size_t position_ = 0;
 
     std::unordered_map<uint32_t, Value> values_;
     std::unordered_map<uint32_t, size_t> last_use_;

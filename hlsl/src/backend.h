@@ -1,5 +1,6 @@
-// Optimized SPIR-V (frontend.h) -> SM2 assembly text. Straight-line code only: one function, one
-// block; anything else gets a located error naming what SM2 (or this back end) lacks.
+// Optimized SPIR-V (frontend.h) -> SM2 assembly text. Straight-line code, plus in vs_2_0 the static
+// flow control SM2 has: `if b#` for branches on uniform bools, `rep i#` for loops counted by uniform
+// ints; anything else gets a located error naming what SM2 (or this back end) lacks.
 #pragma once
 
 #include <cstdint>

@@ -147,3 +147,25 @@ TEST(HlslConstantTable, BoolAndIntUniformsTakeFloatRegisters) {
     expect_constant(*found->table, {"count", F4, 1, 1, parameter_class::Scalar, parameter_type::Int, 1, 1, 1, {3, 0, 0, 0}});
     expect_constant(*found->table, {"tint", F4, 2, 1, parameter_class::Vector, parameter_type::Float, 1, 4, 1, {}});
 }
+
+TEST(HlslConstantTable, FlowControlUniformsTakeBoolAndIntRegisters) {
+    // vs_2_0: a bool deciding an `if` lives in b#, an int counting a loop in i#, in declaration order
+    // and without a c# register, so the float after them is c0. No defaults for b#/i#.
+    sm2::hlsl::CompileOptions options;
+    options.stage = sm2::isa::ShaderType::Vertex;
+    const auto result = sm2::hlsl::compile(
+        "bool first = true;\nint count = 3;\nfloat4 tint;\nbool second;\n"
+        "float4 main(float4 pos : POSITION) : POSITION {\n"
+        "  float4 acc = pos;\n"
+        "  for (int i = 0; i < count; i++) acc += tint;\n"
+        "  if (second) acc *= 2;\n  if (first) acc += 1;\n"
+        "  return acc;\n}\n",
+        options);
+    ASSERT_TRUE(result.ok()) << messages(result);
+    const auto found = sm2::isa::find_constant_table(*result.program);
+    ASSERT_TRUE(found.has_value() && found->ok());
+    expect_constant(*found->table, {"first", ConstantRegisterSet::Bool, 0, 1, parameter_class::Scalar, parameter_type::Bool, 1, 1, 1, {}});
+    expect_constant(*found->table, {"count", ConstantRegisterSet::Int4, 0, 1, parameter_class::Scalar, parameter_type::Int, 1, 1, 1, {}});
+    expect_constant(*found->table, {"tint", ConstantRegisterSet::Float4, 0, 1, parameter_class::Vector, parameter_type::Float, 1, 4, 1, {}});
+    expect_constant(*found->table, {"second", ConstantRegisterSet::Bool, 1, 1, parameter_class::Scalar, parameter_type::Bool, 1, 1, 1, {}});
+}
