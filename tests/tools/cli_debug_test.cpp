@@ -333,6 +333,45 @@ TEST(CliDebug, VertexShaderOfAKnownVertex) {
     EXPECT_NE(text.out.find("  r0 (xyzw) (-1, -1, 0.5, 1)\n"), std::string::npos) << text.out;
 }
 
+// The gradient's vertex shader written in HLSL (an hlsl<< heredoc): vertex 1 has p = (0.5, 0.5,
+// 0.5, 1) and t = (4, 0, 0, 1); world = diag(2, 2, 1, 1) in c0..c3, so mul(p, world) = (1, 1,
+// 0.5, 1) (four dp4 under line 6) and t * 2 = (8, 0, 0, 2) (line 7); the output copies carry the
+// lines of the values they store.
+TEST(CliDebug, HlslVertexShaderStepsByHlslLine) {
+    std::string text = kGradient;
+    const std::string asm_vs = "CreateVertexShader vs asm<<END\nvs_2_0\ndcl_position v0\ndcl_texcoord v1\nm4x4 r0, v0, c0\n"
+                               "mov oPos, r0\nmov oT0, v1\nEND\n";
+    ASSERT_NE(text.find(asm_vs), std::string::npos);
+    text.replace(text.find(asm_vs), asm_vs.size(),
+                 "CreateVertexShader vs hlsl<<END\n"
+                 "float4x4 world;\n"                                             // 1
+                 "struct Out { float4 pos : POSITION; float4 t : TEXCOORD0; };\n"  // 2
+                 "Out main(float4 p : POSITION, float4 t : TEXCOORD0)\n"          // 3
+                 "{\n"                                                           // 4
+                 "    Out o;\n"                                                  // 5
+                 "    o.pos = mul(p, world);\n"                                  // 6
+                 "    o.t = t * 2;\n"                                            // 7
+                 "    return o;\n"                                               // 8
+                 "}\nEND\n");
+    const std::string stream = tmp("hlsl_vertex_gradient.sm2cs");
+    write_file(stream, text);
+    const Result r = sm2("debug " + stream + " --frame 0 --vertex 1");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("HLSL, stepped by source line"), std::string::npos) << r.out;
+    const size_t line6 = r.out.find("hlsl:6: o.pos = mul(p, world);\n  step 1, line ");
+    ASSERT_NE(line6, std::string::npos) << r.out;
+    const size_t line7 = r.out.find("hlsl:7: o.t = t * 2;\n", line6);
+    ASSERT_NE(line7, std::string::npos) << r.out;
+    const std::string group6 = r.out.substr(line6, line7 - line6);
+    size_t dp4 = 0;
+    for (size_t at = group6.find(": dp4 "); at != std::string::npos; at = group6.find(": dp4 ", at + 1)) ++dp4;
+    EXPECT_EQ(dp4, 4u) << group6;
+    EXPECT_NE(group6.find("(1, 1, 0.5, 1)\n"), std::string::npos) << group6;
+    EXPECT_NE(r.out.find("(8, 0, 0, 2)\n", line7), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("    oPos (xyzw) (1, 1, 0.5, 1)\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("    oT0 (xyzw) (8, 0, 0, 2)\n"), std::string::npos) << r.out;
+}
+
 TEST(CliDebug, ATexturedDrawOfATraceEndsAtThePixelsShaderColour) {
     // shader_scene.trace, pixel (128, 128) of frame 0: the debugged shader's last oC0 at the pixel
     // is the colour the draw's own pass gave it (sm2 pixel), texture samples included.
