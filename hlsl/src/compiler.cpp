@@ -171,6 +171,7 @@ CompileResult compile(std::string_view source, const CompileOptions& options) {
     // its findings are moved to the HLSL line the instruction came from.
     assembler::AssembleOptions assemble_options;
     assemble_options.file_name = options.file_name;
+    assemble_options.validation.max_instruction_slots = options.max_instruction_slots;
     auto assembled = assembler::assemble(assembly.text, assemble_options);
     std::vector<std::string> lines;
     for (size_t start = 0; start < assembly.text.size();) {

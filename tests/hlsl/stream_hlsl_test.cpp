@@ -111,6 +111,36 @@ TEST(StreamHlsl, CompileErrorNamesTheLineInsideTheHeredoc) {
     EXPECT_FALSE(device.has_resource("ps"));
 }
 
+// The device's instruction-slot limit applies to HLSL heredocs as to assembly ones: 70 chained
+// mads on uniforms (unrolled: 70 arithmetic slots plus the output's mov) are over ps_2_0's 64,
+// refused at the HLSL line of the loop, and accepted once the stream raises the limit to 96.
+TEST(StreamHlsl, TheDeviceSlotLimitAppliesToHlsl) {
+    const std::string shader = "CreatePixelShader ps_NAME hlsl<<END\n"
+                               "float4 a;\n"                                          // HLSL line 1
+                               "float4 b;\n"                                          // 2
+                               "float4 main() : COLOR {\n"                            // 3
+                               "  float4 x = a;\n"                                    // 4
+                               "  [unroll] for (int i = 0; i < 70; ++i) x = x * a + b;\n"  // 5
+                               "  return x;\n"
+                               "}\n"
+                               "END\n";
+    auto named = [&](const std::string& name) {
+        std::string text = shader;
+        text.replace(text.find("NAME"), 4, name);
+        return text;
+    };
+    Device device{DeviceOptions{}};
+    Replayer replayer(device, options_with_compilers());
+    const ReplayResult r = replayer.replay(parse("sm2cs 1\nCreateDevice 2 2 A8R8G8B8\n" + named("first") +
+                                                 "SetDeviceLimits INSTRUCTIONSLOTS 96\n" + named("second")));
+    ASSERT_EQ(r.diagnostics.size(), 1u);
+    const std::string text = r.diagnostics[0].to_string();
+    EXPECT_NE(text.find("CreatePixelShader"), std::string::npos) << text;
+    EXPECT_NE(text.find("slot"), std::string::npos) << text;
+    EXPECT_FALSE(device.has_resource("ps_first"));
+    EXPECT_TRUE(device.has_resource("ps_second"));
+}
+
 TEST(StreamHlsl, WithoutACompilerHlslIsRefused) {
     Device device{DeviceOptions{}};
     ReplayOptions options;

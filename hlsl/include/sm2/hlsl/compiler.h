@@ -26,6 +26,9 @@ struct CompileOptions {
     // each instruction's HLSL file and line, with those lines' text (sm2 compile --debug-info,
     // always for a command stream's hlsl<<TAG shaders). Off, the bytes do not change.
     bool debug_info = false;
+    // A device's instruction-slot limit below the profile's (SetDeviceLimits, --max-slots); 0
+    // keeps the profile's. Exceeding it is a located error, as in the assembler.
+    unsigned max_instruction_slots = 0;
 };
 
 // A located diagnostic with the number fxc would give it (X3000 is printed as "X3000"); the

@@ -17,13 +17,15 @@
 namespace sm2::runtime {
 
 // Entry point `main`, profile vs_2_0 or ps_2_0 from the call (CreateVertexShader,
-// CreatePixelShader). The compiler checks the profile's own limits (a lower device limit,
-// SetDeviceLimits or --max-slots, is not applied to HLSL yet). A failure reports the first
-// error, at its line in the HLSL text. The program carries the HLSL line table (a comment block,
+// CreatePixelShader). The compiler checks the profile's limits and the device's instruction-slot
+// limit the replayer passes in (SetDeviceLimits, DeviceOptions::max_instruction_slots, sm2
+// --max-slots), as for assembly heredocs. A failure reports the first error, at its line in the
+// HLSL text. The program carries the HLSL line table (a comment block,
 // sm2/isa/line_table.h) so that sm2 debug can step by HLSL line.
 inline ShaderCompiler stream_hlsl_compiler() {
-    return [](std::string_view source, isa::ShaderType stage, unsigned /*max_instruction_slots*/) {
+    return [](std::string_view source, isa::ShaderType stage, unsigned max_instruction_slots) {
         hlsl::CompileOptions options;
+        options.max_instruction_slots = max_instruction_slots;
         options.file_name = "hlsl";
         options.stage = stage;
         options.debug_info = true;  // the line table, for sm2 debug (a comment block: runs the same)
