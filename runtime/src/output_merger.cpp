@@ -303,6 +303,13 @@ SM2_AVX512 LanePlaces lane_places_avx512(const PixelLanes& lanes, emu::LaneMask 
     return r;
 }
 
+// The classic "source over" blend (SRCALPHA, INVSRCALPHA, ADD for colour and alpha), which
+// merge_unorm8_avx512() does in registers.
+bool source_over(const BlendState& b) {
+    return b.src == Blend::SrcAlpha && b.dst == Blend::InvSrcAlpha && b.op == BlendOp::Add &&
+           b.src_alpha == Blend::SrcAlpha && b.dst_alpha == Blend::InvSrcAlpha && b.op_alpha == BlendOp::Add;
+}
+
 // saturate() for 16 lanes: NaN and -0 -> +0.
 SM2_AVX512 inline __m512 saturate16(__m512 v) {
     const __m512 c = _mm512_maskz_mov_ps(_mm512_cmp_ps_mask(v, _mm512_setzero_ps(), _CMP_GT_OQ), v);
@@ -337,7 +344,7 @@ SM2_AVX512 void merge_unorm8_avx512(const BlendState& b, const Unorm8Texel& fmt,
     const __mmask8 row0 = row_run >= 0 ? row_mask(write, 0) : 0, row1 = row_run >= 0 ? row_mask(write, 1) : 0;
     std::byte* const run0 = row_run >= 0 ? bytes + row_run : bytes;
     std::byte* const run1 = run0 + surface.row_pitch();
-    Rgba<Lanes> dst, clamped, blended;
+    __m512 dst[4] = {}, out[4];
     if (b.enable || mask != 0xF) {
         __m512i stored;
         if (row_run >= 0) {
@@ -347,20 +354,34 @@ SM2_AVX512 void merge_unorm8_avx512(const BlendState& b, const Unorm8Texel& fmt,
         } else {
             stored = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, where, bytes, 1);
         }
-        for (unsigned c = 0; c < 4; ++c) {
-            const __m512 value = fmt.shift[c] < 0 ? _mm512_set1_ps(fmt.missing[c])
-                                                  : unorm8::decode_field(stored, static_cast<unsigned>(fmt.shift[c]), fmt.mask[c]);
-            _mm512_storeu_ps(dst[c].v.data(), value);
+        for (unsigned c = 0; c < 4; ++c)
+            dst[c] = fmt.shift[c] < 0 ? _mm512_set1_ps(fmt.missing[c])
+                                      : unorm8::decode_field(stored, static_cast<unsigned>(fmt.shift[c]), fmt.mask[c]);
+    }
+    for (unsigned c = 0; c < 4; ++c) out[c] = saturate16(_mm512_loadu_ps(src[c].v.data()));
+    if (b.enable) {
+        if (source_over(b)) {
+            // blend_batch() for SRCALPHA, INVSRCALPHA, ADD on every channel, in registers: the
+            // same operations (s * a + d * (1 - a), then saturate).
+            const __m512 alpha = out[3], keep = _mm512_sub_ps(_mm512_set1_ps(1.0f), out[3]);
+            for (unsigned c = 0; c < 4; ++c)
+                out[c] = saturate16(_mm512_add_ps(_mm512_mul_ps(out[c], alpha), _mm512_mul_ps(dst[c], keep)));
+        } else {
+            Rgba<Lanes> clamped, previous, blended;
+            for (unsigned c = 0; c < 4; ++c) {
+                _mm512_storeu_ps(clamped[c].v.data(), out[c]);
+                _mm512_storeu_ps(previous[c].v.data(), dst[c]);
+            }
+            blend_batch(b, clamped, previous, blended);
+            for (unsigned c = 0; c < 4; ++c) out[c] = _mm512_loadu_ps(blended[c].v.data());
         }
     }
-    for (unsigned c = 0; c < 4; ++c) _mm512_storeu_ps(clamped[c].v.data(), saturate16(_mm512_loadu_ps(src[c].v.data())));
-    if (b.enable) blend_batch(b, clamped, dst, blended);
-    const Rgba<Lanes>& out = b.enable ? blended : clamped;  // in [0, 1], as is dst
+    // out and dst are in [0, 1].
     __m512i packed = _mm512_setzero_si512();
     for (unsigned c = 0; c < 4; ++c) {
         if (fmt.shift[c] < 0) continue;
         // A masked channel stores what it read (which encodes back to the same byte).
-        const __m512 value = _mm512_loadu_ps((mask >> c & 1u ? out[c] : dst[c]).v.data());
+        const __m512 value = mask >> c & 1u ? out[c] : dst[c];
         packed = _mm512_or_si512(packed, _mm512_slli_epi32(unorm8::encode(value, static_cast<double>(fmt.mask[c])),
                                                            static_cast<unsigned>(fmt.shift[c])));
     }

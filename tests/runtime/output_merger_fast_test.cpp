@@ -138,6 +138,15 @@ RenderState random_state(Random& r) {
     rs.dest_blend_alpha = r.pick<Blend>(1, 15);
     rs.blend_op_alpha = r.pick<BlendOp>(1, 5);
     rs.blend_factor = r.chance(0.3) ? 0xFFFFFFFFu : r.bits();
+    if (r.chance(0.2)) {  // "source over", which the 8-bit block path blends in registers
+        rs.src_blend = Blend::SrcAlpha;
+        rs.dest_blend = Blend::InvSrcAlpha;
+        rs.blend_op = BlendOp::Add;
+        rs.separate_alpha_blend_enable = r.chance(0.2);
+        rs.src_blend_alpha = Blend::SrcAlpha;
+        rs.dest_blend_alpha = Blend::InvSrcAlpha;
+        rs.blend_op_alpha = BlendOp::Add;
+    }
     for (uint32_t& m : rs.color_write_enable) m = r.chance(0.5) ? 0xF : r.below(16);
     rs.fog_enable = r.chance(0.3);
     rs.fog_table_mode = r.pick<FogMode>(0, 3);
@@ -267,6 +276,48 @@ TEST(OutputMergerFast, EncodeMatchesOverASweep) {
             }
             ASSERT_TRUE(same_both_ways(c)) << "values from " << at;
         }
+    }
+}
+
+// "Source over" (SRCALPHA, INVSRCALPHA, ADD), which the block path blends in registers, at the
+// blends that land next to a rounding boundary of the store: for stored bytes d and alphas a,
+// sources s within a few ulps of ((k + 0.5) / 255 - d (1 - a)) / a, where one rounding more or
+// less (a fused multiply-add) changes the byte.
+TEST(OutputMergerFast, SourceOverMatchesThePerPixelPathAtRoundingBoundaries) {
+    RenderState rs;
+    rs.alpha_blend_enable = true;
+    rs.src_blend = Blend::SrcAlpha;
+    rs.dest_blend = Blend::InvSrcAlpha;
+    Case c;
+    c.state = output_merger_state(rs);
+    c.color[0] = Surface(Format::A8R8G8B8, 8, 2);
+    c.lanes.quad_count = 4;
+    for (unsigned i = 0; i < kLanes; ++i) {
+        c.lanes.x[i] = static_cast<int32_t>(2 * (i / 4) + (i & 1u));
+        c.lanes.y[i] = static_cast<int32_t>(i >> 1 & 1u);
+    }
+    c.input.live = emu::kAllLanes;
+    Random r(7);
+    for (int round = 0; round < 4000; ++round) {
+        auto& bytes = c.color[0]->bytes();
+        for (auto& b : bytes) b = static_cast<std::byte>(r.below(256));
+        for (unsigned i = 0; i < kLanes; ++i) {
+            const float a = static_cast<float>(1 + r.below(254)) / 255.0f + r.uniform(-1e-4f, 1e-4f);
+            const auto* texel = bytes.data() + static_cast<size_t>(c.lanes.y[i]) * c.color[0]->row_pitch() +
+                                static_cast<size_t>(c.lanes.x[i]) * 4;
+            std::array<float, 4> colour{};
+            for (unsigned ch = 0; ch < 3; ++ch) {
+                const float d = static_cast<float>(std::to_integer<unsigned>(texel[2 - ch])) / 255.0f;  // B G R A
+                const float boundary = (static_cast<float>(r.below(255)) + 0.5f) / 255.0f;
+                float s = (boundary - d * (1.0f - a)) / a;
+                for (int step = static_cast<int>(r.below(9)) - 4; step != 0; step += step < 0 ? 1 : -1)
+                    s = std::nextafter(s, step < 0 ? -2.0f : 2.0f);
+                colour[ch] = s;
+            }
+            colour[3] = a;
+            c.batch.set(c.batch.render_target(0), i, colour[0], colour[1], colour[2], colour[3]);
+        }
+        ASSERT_TRUE(same_both_ways(c)) << "round " << round;
     }
 }
 
