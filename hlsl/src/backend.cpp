@@ -34,7 +34,7 @@ constexpr uint32_t Undef = 1, Name = 5, MemberName = 6, Line = 8, ExtInst = 12, 
                    ConstantTrue = 41, ConstantFalse = 42, Constant = 43, ConstantComposite = 44,
                    ConstantNull = 46, Function = 54, FunctionEnd = 56, Variable = 59, Load = 61, Store = 62,
                    AccessChain = 65, InBoundsAccessChain = 66, Decorate = 71, MemberDecorate = 72,
-                   VectorShuffle = 79, CompositeConstruct = 80, CompositeExtract = 81, CopyObject = 83,
+                   VectorShuffle = 79, CompositeConstruct = 80, CompositeExtract = 81, CompositeInsert = 82, CopyObject = 83,
                    Transpose = 84, ImageSampleImplicitLod = 87, ImageSampleExplicitLod = 88,
                    ConvertSToF = 111, ConvertUToF = 112, ImageSampleProjImplicitLod = 91,
                    FNegate = 127, FAdd = 129, FSub = 131, FMul = 133, FDiv = 136, VectorTimesScalar = 142,
@@ -562,11 +562,12 @@ private:
         for (size_t k = first; k < ins.words.size(); ++k) ids.push_back(ins.words[k]);
         if (ins.opcode == op::VectorShuffle) ids.resize(std::min<size_t>(ids.size(), 2));
         if (ins.opcode == op::CompositeExtract) ids.resize(std::min<size_t>(ids.size(), 1));
+        if (ins.opcode == op::CompositeInsert) ids.resize(std::min<size_t>(ids.size(), 2));
         return ids;
     }
 
     void generate() {
-        // Uniform registers: the $Global members in declaration order, then the literals.
+        // Uniform registers: the $Global members at their register(cN) or in declaration order, then the literals.
         assign_uniform_registers();
         // Last uses, with a mul folded into the add that is its only user (mad) counted at the add.
         std::unordered_map<uint32_t, int> use_count;
@@ -630,14 +631,48 @@ private:
             const uint32_t pointee_id = types_.at(pointer_type).element;
             const Type& pointee = types_.at(pointee_id);
             if (storage == kStorageUniform && pointee.opcode == op::TypeStruct) {
+                // `: register(cN)` places a uniform at cN (as fxc does); the others follow one
+                // another in declaration order from c0, skipping the registers placed ones hold.
+                std::vector<std::optional<uint32_t>> placed(pointee.members.size());
+                std::vector<std::pair<uint32_t, uint32_t>> taken;  // [first, end) of explicit placements
+                const uint32_t limit = pixel_ ? 32u : 256u;
                 for (size_t m = 0; m < pointee.members.size(); ++m) {
                     const auto member = static_cast<uint32_t>(m);
-                    member_register_[{pointee_id, member}] = next;
+                    placed[m] = explicit_constant_register(member_name(pointee_id, member));
+                    if (!placed[m]) continue;
+                    const bool row_major = member_decorations_[pointee_id][member].count(decoration::RowMajor) > 0;
+                    const uint32_t first = *placed[m], end = first + register_size(pointee.members[m], row_major);
+                    if (end > limit)
+                        throw CompileError("'" + member_name(pointee_id, member) + "' at register(c" + std::to_string(first) +
+                                           ") runs past c" + std::to_string(limit - 1) + ", the last constant register of " + profile());
+                    for (const auto& [f, e] : taken)
+                        if (first < e && f < end)
+                            throw CompileError("'" + member_name(pointee_id, member) + "' at register(c" + std::to_string(first) +
+                                               ") overlaps another uniform's registers c" + std::to_string(f) + "..c" +
+                                               std::to_string(e - 1));
+                    taken.emplace_back(first, end);
+                }
+                uint32_t end_of_all = 0;
+                for (size_t m = 0; m < pointee.members.size(); ++m) {
+                    const auto member = static_cast<uint32_t>(m);
                     const bool spirv_row_major = member_decorations_[pointee_id][member].count(decoration::RowMajor) > 0;
                     const uint32_t size = register_size(pointee.members[m], spirv_row_major);
+                    uint32_t at = next;
+                    if (placed[m]) {
+                        at = *placed[m];
+                    } else {
+                        for (bool moved = true; moved;) {
+                            moved = false;
+                            for (const auto& [f, e] : taken)
+                                if (next < e && f < next + size) { next = e; moved = true; }
+                        }
+                        at = next;
+                        next += size;
+                    }
+                    member_register_[{pointee_id, member}] = at;
                     isa::ConstantInfo info;
                     info.name = member_name(pointee_id, member);
-                    info.register_index = static_cast<uint16_t>(next);
+                    info.register_index = static_cast<uint16_t>(at);
                     info.register_count = static_cast<uint16_t>(size);
                     info.type = constant_type(pointee.members[m], spirv_row_major);
                     if (info.type.parameter_type == isa::parameter_type::Int && declared_bool(info.name))
@@ -645,8 +680,9 @@ private:
                     if (auto values = literal_initializer(info.name))
                         info.default_value = default_registers(info.type, info.register_count, *values);
                     constants_table_.push_back(std::move(info));
-                    next += size;
+                    end_of_all = std::max(end_of_all, at + size);
                 }
+                next = end_of_all;
             } else if (storage == kStorageUniformConstant && pointee.opcode == op::TypeSampledImage) {
                 auto d = decorations_.find(id);
                 int s;
@@ -705,6 +741,30 @@ private:
                 return i;
         }
         return std::nullopt;
+    }
+
+    // `: register(cN)` (or `register(CN)`) in a global's declaration, before its initializer.
+    std::optional<uint32_t> explicit_constant_register(const std::string& name) const {
+        const auto at = global_declaration(name);
+        if (!at) return std::nullopt;
+        const size_t end = std::min(source_.find(';', *at), source_.find('=', *at));
+        const std::string_view declaration = source_.substr(*at, end == std::string_view::npos ? std::string_view::npos : end - *at);
+        size_t k = declaration.find("register");
+        if (k == std::string_view::npos) return std::nullopt;
+        k += 8;
+        auto skip_space = [&] { while (k < declaration.size() && std::isspace(static_cast<unsigned char>(declaration[k]))) ++k; };
+        skip_space();
+        if (k >= declaration.size() || declaration[k] != '(') return std::nullopt;
+        ++k;
+        skip_space();
+        if (k >= declaration.size() || (declaration[k] != 'c' && declaration[k] != 'C')) return std::nullopt;
+        ++k;
+        uint32_t index = 0;
+        const size_t digits = k;
+        while (k < declaration.size() && std::isdigit(static_cast<unsigned char>(declaration[k])) && index < 100000)
+            index = index * 10 + static_cast<uint32_t>(declaration[k++] - '0');
+        if (k == digits) return std::nullopt;
+        return index;
     }
 
     // glslang stores a bool uniform as a 32-bit unsigned integer; the declaration says which.
@@ -991,6 +1051,16 @@ private:
                 const uint32_t c = w[k];
                 parts.push_back(c < a.count ? component_view(a, c) : component_view(b, c - a.count));
             }
+            define(w.at(1), construct(parts));
+            return;
+        }
+        case op::CompositeInsert: {  // `v.w = x`: the vector with one component replaced
+            const Value object = as_register(w.at(2)), composite = value(w.at(3));
+            if (composite.kind != Value::Kind::Register || w.size() != 5)
+                throw CompileError("inserting into this value (a struct, array or matrix) is not supported");
+            std::vector<Value> parts;
+            for (uint32_t c = 0; c < composite.count; ++c)
+                parts.push_back(c == w.at(4) ? component_view(object, 0) : component_view(composite, c));
             define(w.at(1), construct(parts));
             return;
         }

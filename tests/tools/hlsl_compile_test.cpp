@@ -113,6 +113,16 @@ TEST(HlslCompile, SwizzlesAndArithmetic) {
     expect_near(run_output(ps, "--const c0=1,2,3,4", "oC0"), {10, 9, 8, 3});
 }
 
+TEST(HlslCompile, AssigningOneComponentOfAVector) {
+    // c = tex (here the constant k = (0.5, 0.25, 1, 0.8)) with c.w scaled by s = 0.5 and c.y set
+    // to 2: (0.5, 2, 1, 0.4). glslang writes these as OpCompositeInsert.
+    const auto ps = compile("insert",
+                            "float4 k : register(c1);\nfloat s : register(c0);\n"
+                            "float4 main() : COLOR { float4 c = k; c.w *= s; c.y = 2; return c; }\n", "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "--const c0=0.5,0,0,0 --const c1=0.5,0.25,1,0.8", "oC0"), {0.5f, 2, 1, 0.4f});
+}
+
 TEST(HlslCompile, Intrinsics) {
     // u = (4, 16, 0.25, 3): sqrt(4) = 2, rsqrt(16) = 0.25, lerp(2, 6, 0.25) = 3, max(3, 1) - min(3, 1) = 2.
     const auto ps = compile("intrinsics",
