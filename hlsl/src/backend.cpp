@@ -49,7 +49,7 @@ constexpr uint32_t RowMajor = 4, BuiltIn = 11, Binding = 33, UserSemantic = 5635
 namespace glsl {  // GLSL.std.450
 constexpr uint32_t FAbs = 4, Floor = 8, Fract = 10, Sin = 13, Cos = 14, Pow = 26, Exp = 27, Log = 28, Exp2 = 29,
                    Log2 = 30, Sqrt = 31, InverseSqrt = 32, FMin = 37, FMax = 40, FClamp = 43, FMix = 46,
-                   Step = 48, Fma = 50, Length = 66, Distance = 67, Cross = 68, Normalize = 69;
+                   Step = 48, Fma = 50, Length = 66, Distance = 67, Cross = 68, Normalize = 69, Reflect = 71;
 }
 constexpr uint32_t kStorageUniformConstant = 0, kStorageInput = 1, kStorageUniform = 2, kStorageOutput = 3;
 constexpr uint32_t kBuiltInPosition = 0;
@@ -440,7 +440,12 @@ private:
     // One instruction: `dest` with `mask`; sources legalized for swizzles and read ports.
     void emit(const std::string& mnemonic, const std::string& dest, uint8_t mask, std::vector<Value> sources,
               bool identity_sources = false) {
-        // Read ports: at most 2 distinct c#, 1 v#, 1 t# per instruction.
+        // Dot products and the vector macros read their sources' components whatever the mask.
+        const uint8_t read_mask = mnemonic == "dp4" ? 0xF
+                                  : (mnemonic == "dp3" || mnemonic == "nrm" || mnemonic == "crs") ? 0x7
+                                                                                                  : mask;
+        // Read ports: at most 2 distinct c#, 1 v#, 1 t# per instruction (a source moved to a temp
+        // keeps every component the instruction reads: dp3 t0, t1 reads .xyz of both).
         std::map<char, std::set<int>> seen;
         for (auto& s : sources) {
             if (s.file == 'r') continue;
@@ -449,17 +454,13 @@ private:
             const size_t limit = s.file == 'c' ? 2 : 1;
             if (set.size() > limit) {
                 set.erase(s.index);
-                s = materialize(s, mask);
+                s = materialize(s, read_mask);
             }
         }
         std::string text = mnemonic + " " + dest + mask_text(mask);
         // Scalar instructions read one component, named by a replicate swizzle.
         const bool scalar = mnemonic == "rcp" || mnemonic == "rsq" || mnemonic == "exp" || mnemonic == "log" ||
                             mnemonic == "pow";
-        // Dot products and the vector macros read their sources' components whatever the mask.
-        const uint8_t read_mask = mnemonic == "dp4" ? 0xF
-                                  : (mnemonic == "dp3" || mnemonic == "nrm" || mnemonic == "crs") ? 0x7
-                                                                                                  : mask;
         for (auto& s : sources) {
             auto swizzle = source_swizzle(s, read_mask);
             if (scalar) {
@@ -1222,7 +1223,13 @@ private:
             throw CompileError("indexing an input, output or local array is not supported");
         if (t.opcode == op::TypeStruct) {
             if (index >= t.members.size()) throw CompileError("internal error: member out of range");
-            p.index = static_cast<int>(member_register_.at({p.pointee, index}));
+            const auto placed = member_register_.find({p.pointee, index});
+            if (placed != member_register_.end()) {  // a member of the $Global block: its register
+                p.index = static_cast<int>(placed->second);
+            } else {  // a member of a struct inside it (an array of structs): after the ones before it
+                for (uint32_t m = 0; m < index; ++m)
+                    p.index += static_cast<int>(register_size(t.members[m], member_decorations_[p.pointee][m].count(decoration::RowMajor) > 0));
+            }
             const auto& md = member_decorations_[p.pointee][index];
             p.row_major = md.count(decoration::RowMajor) > 0;
             p.pointee = t.members[index];
@@ -1510,6 +1517,16 @@ private:
         case glsl::Cross: {
             Value d = new_temp(3);
             emit("crs", temp_name(d), 0x7, {arg(0), arg(1)}, true);
+            define(result, d);
+            return;
+        }
+        case glsl::Reflect: {  // reflect(i, n) = i - 2 dot(n, i) n: dp, add, mad (fxc's sequence)
+            const Value i = arg(0), n = arg(1);
+            Value k = dot(n, i);
+            emit("add", temp_name(k), 1, {k, k});
+            k.negate = true;
+            Value d = new_temp(count);
+            emit("mad", temp_name(d), mask, {n, k, i});
             define(result, d);
             return;
         }

@@ -123,6 +123,20 @@ TEST(HlslCompile, AssigningOneComponentOfAVector) {
     expect_near(run_output(ps, "--const c0=0.5,0,0,0 --const c1=0.5,0.25,1,0.8", "oC0"), {0.5f, 2, 1, 0.4f});
 }
 
+TEST(HlslCompile, ReflectAndArraysOfStructs) {
+    // reflect(i, n) = i - 2 dot(n, i) n: i = (1, -1, 0.5), n = (0, 1, 0): dot = -1,
+    // i + 2 n = (1, 1, 0.5). The struct L takes 2 registers (pos, pn), so lights[0] is c0..c1 and
+    // lights[1] c2..c3: lights[1].pos = c2 = (0, 0, 1), lights[0].pn = c1.x = 3;
+    // (1, 1, 0.5) + (0, 0, 1) * 3 = (1, 1, 3.5).
+    const auto ps = compile("reflect",
+                            "struct L { float3 pos; float pn; };\nL lights[2];\n"
+                            "float4 main(float3 i : TEXCOORD0, float3 n : TEXCOORD1) : COLOR {\n"
+                            "  return float4(reflect(i, n) + lights[1].pos * lights[0].pn, 1);\n}\n", "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "--input t0=1,-1,0.5 --input t1=0,1,0 --const c1=3,0,0,0 --const c2=0,0,1,0", "oC0"),
+                {1, 1, 3.5f, 1});
+}
+
 TEST(HlslCompile, Intrinsics) {
     // u = (4, 16, 0.25, 3): sqrt(4) = 2, rsqrt(16) = 0.25, lerp(2, 6, 0.25) = 3, max(3, 1) - min(3, 1) = 2.
     const auto ps = compile("intrinsics",
