@@ -297,6 +297,17 @@ private:
 
     // ---- registers ------------------------------------------------------------------------------
     int allocate_temp() {
+        // In ps_2_0 a temp never written before is taken while one is left: the dependent-read
+        // rule counts a texld into a temp written earlier, and a partial write (a coordinate's
+        // .xyz) into one that held a texture result, as one level deeper (isa validator, rule
+        // 17), so reusing r0 for four independent reads would look like a chain of four.
+        if (pixel_ && max_temp_ < kTempCount && !temp_busy_[static_cast<size_t>(max_temp_)]) {
+            const int r = max_temp_;
+            temp_busy_[static_cast<size_t>(r)] = true;
+            temp_holders_[r] = 0;
+            max_temp_ = r + 1;
+            return r;
+        }
         for (int r = 0; r < kTempCount; ++r)
             if (!temp_busy_[static_cast<size_t>(r)]) {
                 temp_busy_[static_cast<size_t>(r)] = true;
@@ -1164,15 +1175,23 @@ private:
         case op::ImageSampleImplicitLod:
         case op::ImageSampleProjImplicitLod: {
             if (!pixel_) throw CompileError("texture sampling in a vertex shader needs vs_3_0 (vs_2_0 has no texld)");
-            if (w.size() > 4) throw CompileError("texture sampling with bias, offsets or gradients is not supported");
+            // tex2Dbias/texCUBEbias/tex3Dbias (t.w the bias): the Bias image operand (mask 0x1).
+            const bool bias = ins.opcode == op::ImageSampleImplicitLod && w.size() == 6 && w.at(4) == 0x1;
+            if (w.size() > 4 && !bias) throw CompileError("texture sampling with offsets or gradients is not supported");
             const Value s = value(w.at(2));
             if (s.kind != Value::Kind::Sampler) throw CompileError("internal error: sampling without a sampler");
             Value coord = as_register(w.at(3));
+            if (bias) {  // texldb reads the bias from the coordinate's .w
+                std::vector<Value> parts;
+                for (uint32_t c = 0; c < 3; ++c) parts.push_back(component_view(coord, std::min(c, coord.count - 1)));
+                parts.push_back(component_view(as_register(w.at(5)), 0));
+                coord = construct(parts);
+            }
             if (!(coord.file == 'r' || coord.file == 't') || coord.negate ||
                 coord.swizzle != std::array<uint8_t, 4>{0, 1, 2, 3} || coord.count == 1)
                 coord = materialize(coord, mask_of(std::max<uint32_t>(coord.count, 2)));
             Value d = new_temp(4);
-            line(std::string(ins.opcode == op::ImageSampleProjImplicitLod ? "texldp " : "texld ") + temp_name(d) +
+            line(std::string(ins.opcode == op::ImageSampleProjImplicitLod ? "texldp " : bias ? "texldb " : "texld ") + temp_name(d) +
                  ", " + register_name(coord) + ", s" + std::to_string(s.sampler));
             define(w.at(1), d);
             return;
