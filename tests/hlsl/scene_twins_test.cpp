@@ -56,8 +56,11 @@ const Twin kTwinTable[] = {
     {"09_lake", 0.0f, "sincos twice per angle (sin and cos apart), the two waves summed in the other order"},
     {"10_texture_filtering", 0.0f, "m4x4 as 4 dp4"},
     {"11_texture_addressing", 0.0f, "none"},
+    {"12_cube_map", 0.0f, "reflect() as dp3, add, mad (the assembly's own sequence), texCUBEbias as texldb with .w built in a temp"},
     {"13_volume_slices", 0.0f, "m4x3 as 3 dp4, the alpha scaled in a temp"},
     {"14_textured_phong", 0.0f, "dp3_sat as dp3 + mov_sat, mul + add as mad (Programs 3.4, 3.5 of 000)"},
+    {"15_normal_mapping", 0.0f, "m4x3/m3x3 as dp4/dp3 rows, dp3_sat as dp3 + mov_sat, L and E built from dp3s in temps"},
+    {"16_perlin_noise", 0.0f, "m4x3/m3x3 as rows, the octave sums and the ramp coordinate fused in another order"},
 };
 
 void PrintTo(const Twin& twin, std::ostream* os) { *os << twin.scene; }
