@@ -1077,6 +1077,17 @@ private:
             return;
         }
         case op::CompositeConstruct: {
+            // A scalar comparison splat to a bool vector (`flag > 0 ? v3 : 0`): the comparison
+            // itself, which the select applies to every component.
+            if (value(w.at(2)).kind == Value::Kind::Condition) {
+                for (size_t k = 3; k < w.size(); ++k)
+                    if (w[k] != w[2]) throw CompileError("a vector of different comparisons is not supported in a select");
+                const Value c = value(w.at(2));
+                last_use_[c.lhs] = std::max(last_use_[c.lhs], last_use_[w.at(1)]);
+                last_use_[c.rhs] = std::max(last_use_[c.rhs], last_use_[w.at(1)]);
+                define(w.at(1), c);
+                return;
+            }
             std::vector<Value> parts;
             for (size_t k = 2; k < w.size(); ++k) {
                 const Value p = as_register(w[k]);

@@ -137,6 +137,17 @@ TEST(HlslCompile, ReflectAndArraysOfStructs) {
                 {1, 1, 3.5f, 1});
 }
 
+TEST(HlslCompile, ScalarConditionSelectsAVector) {
+    // flag > 0 ? k.xyz : 0, the comparison splat over three components: k = (0.25, 0.5, 0.75)
+    // where flag = 1, zeros where flag = 0.
+    const auto ps = compile("select_splat",
+                            "float4 k;\nfloat flag;\n"
+                            "float4 main() : COLOR { return float4(flag > 0 ? k.xyz : 0, 1); }\n", "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "--const c0=0.25,0.5,0.75,1 --const c1=1,0,0,0", "oC0"), {0.25f, 0.5f, 0.75f, 1});
+    expect_near(run_output(ps, "--const c0=0.25,0.5,0.75,1 --const c1=0,0,0,0", "oC0"), {0, 0, 0, 1});
+}
+
 TEST(HlslCompile, Intrinsics) {
     // u = (4, 16, 0.25, 3): sqrt(4) = 2, rsqrt(16) = 0.25, lerp(2, 6, 0.25) = 3, max(3, 1) - min(3, 1) = 2.
     const auto ps = compile("intrinsics",
