@@ -297,16 +297,24 @@ private:
 
     // ---- registers ------------------------------------------------------------------------------
     int allocate_temp() {
-        // In ps_2_0 a temp never written before is taken while one is left: the dependent-read
-        // rule counts a texld into a temp written earlier, and a partial write (a coordinate's
-        // .xyz) into one that held a texture result, as one level deeper (isa validator, rule
-        // 17), so reusing r0 for four independent reads would look like a chain of four.
-        if (pixel_ && max_temp_ < kTempCount && !temp_busy_[static_cast<size_t>(max_temp_)]) {
-            const int r = max_temp_;
-            temp_busy_[static_cast<size_t>(r)] = true;
-            temp_holders_[r] = 0;
-            max_temp_ = r + 1;
-            return r;
+        // In ps_2_0 the free temp of the lowest dependent-read level is taken, one never written
+        // first: the rule counts a texld into a temp written earlier, and a partial write (a
+        // coordinate's .xy) into one that held a texture result, as one level deeper (isa
+        // validator, rule 17), so reusing the lowest free temp made independent reads look like
+        // a chain (scene 16's four noise reads, scene 20's twelve blur taps).
+        if (pixel_) {
+            int best = -1, best_key = 0;
+            for (int r = 0; r < kTempCount; ++r) {
+                if (temp_busy_[static_cast<size_t>(r)]) continue;
+                const int key = temp_written_[static_cast<size_t>(r)] ? texture_level_[static_cast<size_t>(r)] : -2;
+                if (best < 0 || key < best_key) { best = r; best_key = key; }
+            }
+            if (best >= 0) {
+                temp_busy_[static_cast<size_t>(best)] = true;
+                temp_holders_[best] = 0;
+                max_temp_ = std::max(max_temp_, best + 1);
+                return best;
+            }
         }
         for (int r = 0; r < kTempCount; ++r)
             if (!temp_busy_[static_cast<size_t>(r)]) {
@@ -371,6 +379,49 @@ private:
     void line(const std::string& text) {
         code_.push_back(text);
         code_origin_.push_back(location_);
+        if (pixel_) track_texture_level(text);
+    }
+
+    // ps_2_0's dependent-read levels of the temps, as the validator counts them (rule 17): a
+    // texld's result is one level above its coordinate and above what its destination held; an
+    // arithmetic result takes its sources' highest level (a partial write keeps the old one too).
+    // Temps are allocated by these levels (allocate_temp), so a read's destination or coordinate
+    // is never a temp that would make an independent read look like a chain.
+    static int temp_in(std::string_view token) {
+        if (!token.empty() && token[0] == '-') token.remove_prefix(1);
+        if (token.size() < 2 || token[0] != 'r' || !std::isdigit(static_cast<unsigned char>(token[1]))) return -1;
+        return std::atoi(std::string(token.substr(1)).c_str());
+    }
+    void track_texture_level(const std::string& text) {
+        const size_t space = text.find(' ');
+        if (space == std::string::npos) return;
+        const std::string mnemonic = text.substr(0, text.find_first_of("_ "));
+        std::vector<std::string> operands;
+        std::stringstream list(text.substr(space + 1));
+        for (std::string item; std::getline(list, item, ',');) {
+            const size_t first = item.find_first_not_of(' ');
+            operands.push_back(first == std::string::npos ? "" : item.substr(first));
+        }
+        if (operands.empty() || mnemonic == "texkill") return;
+        const int d = temp_in(operands[0]);
+        if (d < 0 || d >= kTempCount) return;
+        const auto D = static_cast<size_t>(d);
+        if (mnemonic.rfind("texld", 0) == 0) {
+            int order = 0;
+            if (operands.size() > 1)
+                if (const int c = temp_in(operands[1]); c >= 0 && c < kTempCount)
+                    order = std::max(1, texture_level_[static_cast<size_t>(c)] + 1);
+            if (temp_written_[D]) order = std::max(order, std::max(1, texture_level_[D] + 1));
+            texture_level_[D] = order;
+        } else {
+            int from = -1;
+            for (size_t k = 1; k < operands.size(); ++k)
+                if (const int r = temp_in(operands[k]); r >= 0 && r < kTempCount)
+                    from = std::max(from, texture_level_[static_cast<size_t>(r)]);
+            const bool full = operands[0].find('.') == std::string::npos;
+            texture_level_[D] = full ? from : std::max(texture_level_[D], from);
+        }
+        temp_written_[D] = true;
     }
 
     static bool swizzle_allowed_in_ps(const std::array<uint8_t, 4>& s) {
@@ -550,8 +601,19 @@ private:
         values_[id] = v;
     }
 
+    // `id` is read again at `later` (a mul folded into an add, a comparison's operands read by the
+    // select): its last use moves there, and it is released there with the instruction's own operands.
+    void extend_last_use(uint32_t id, size_t later) {
+        size_t& last = last_use_[id];
+        if (later <= last) return;
+        last = later;
+        released_also_at_[later].push_back(id);
+    }
+
     // Temps no value holds any more go back to the pool after each SPIR-V instruction.
     void release_after(size_t position, std::vector<uint32_t> used) {
+        if (auto also = released_also_at_.find(position); also != released_also_at_.end())
+            used.insert(used.end(), also->second.begin(), also->second.end());
         std::sort(used.begin(), used.end());
         used.erase(std::unique(used.begin(), used.end()), used.end());  // float4(x, x, x, x) holds x once
         for (uint32_t id : used) {
@@ -602,7 +664,7 @@ private:
                 if (m.opcode != op::FMul && m.opcode != op::VectorTimesScalar) continue;
                 if (fused_.count(id) || fused_.count(m.words[2]) || fused_.count(m.words[3])) continue;
                 fused_.insert(id);
-                for (int j = 2; j < 4; ++j) last_use_[m.words[static_cast<size_t>(j)]] = std::max(last_use_[m.words[static_cast<size_t>(j)]], i);
+                for (int j = 2; j < 4; ++j) extend_last_use(m.words[static_cast<size_t>(j)], i);
                 break;
             }
         }
@@ -1083,8 +1145,8 @@ private:
                 for (size_t k = 3; k < w.size(); ++k)
                     if (w[k] != w[2]) throw CompileError("a vector of different comparisons is not supported in a select");
                 const Value c = value(w.at(2));
-                last_use_[c.lhs] = std::max(last_use_[c.lhs], last_use_[w.at(1)]);
-                last_use_[c.rhs] = std::max(last_use_[c.rhs], last_use_[w.at(1)]);
+                extend_last_use(c.lhs, last_use_[w.at(1)]);
+                extend_last_use(c.rhs, last_use_[w.at(1)]);
                 define(w.at(1), c);
                 return;
             }
@@ -1168,7 +1230,7 @@ private:
             if (c.kind != Value::Kind::Condition) throw CompileError("boolean logic beyond one comparison is not supported");
             c.negate = !c.negate;
             for (uint32_t operand : {c.lhs, c.rhs})  // the comparison's operands live as long as the negation
-                if (operand != 0) last_use_[operand] = std::max(last_use_[operand], last_use_[w.at(1)]);
+                if (operand != 0) extend_last_use(operand, last_use_[w.at(1)]);
             define(w.at(1), c);
             return;
         }
@@ -1198,8 +1260,11 @@ private:
                 parts.push_back(component_view(as_register(w.at(5)), 0));
                 coord = construct(parts);
             }
-            if (!(coord.file == 'r' || coord.file == 't') || coord.negate ||
-                coord.swizzle != std::array<uint8_t, 4>{0, 1, 2, 3} || coord.count == 1)
+            // The register as it is when the coordinate is its first components (t0.xy of a float4
+            // input: texld reads the components the texture needs), else moved to a temp.
+            bool leading = coord.count >= 2;
+            for (uint32_t c = 0; c < coord.count && leading; ++c) leading = coord.swizzle[c] == c;
+            if (!(coord.file == 'r' || coord.file == 't') || coord.negate || !leading)
                 coord = materialize(coord, mask_of(std::max<uint32_t>(coord.count, 2)));
             Value d = new_temp(4);
             line(std::string(ins.opcode == op::ImageSampleProjImplicitLod ? "texldp " : bias ? "texldb " : "texld ") + temp_name(d) +
@@ -1223,8 +1288,8 @@ private:
             c.compare = ins.opcode;
             c.lhs = w.at(2);
             c.rhs = w.at(3);
-            last_use_[c.lhs] = std::max(last_use_[c.lhs], last_use_[w.at(1)]);
-            last_use_[c.rhs] = std::max(last_use_[c.rhs], last_use_[w.at(1)]);
+            extend_last_use(c.lhs, last_use_[w.at(1)]);
+            extend_last_use(c.rhs, last_use_[w.at(1)]);
             define(w.at(1), c);
             return;
         }
@@ -1687,12 +1752,15 @@ private:
 
     std::unordered_map<uint32_t, Value> values_;
     std::unordered_map<uint32_t, size_t> last_use_;
+    std::unordered_map<size_t, std::vector<uint32_t>> released_also_at_;  // extend_last_use
     std::set<uint32_t> fused_;
     std::unordered_map<uint32_t, std::pair<Value, Value>> fused_operands_;
     std::array<bool, kTempCount> temp_busy_{};
     std::map<int, int> temp_holders_;
     std::vector<int> scratch_;
     int max_temp_ = 0;
+    std::array<int, 16> texture_level_{};      // ps: track_texture_level
+    std::array<bool, 16> temp_written_{};
 
     std::map<std::string, std::string> declarations_;
     std::vector<std::string> code_;

@@ -54,4 +54,42 @@ TEST(HlslTextureReads, FourIndependentReadsAreNotAChainOfFour) {
     EXPECT_TRUE(result.ok()) << messages(result) << result.assembly;
 }
 
+TEST(HlslTextureReads, TwelveTapsOfADependentBlurStayAtTheSecondLevel) {
+    // Scene 20's blur: a centre read, then 12 reads at coordinates scaled by the centre's alpha
+    // (order 1 each). Reusing a temp that held a read for the next read's destination or
+    // coordinate counts a level more each time; the compiler allocates temps by their level.
+    const auto result = compile_ps(
+        "float4 offsets[12];\nsampler2D image;\n"
+        "float4 main(float4 uv : TEXCOORD0) : COLOR0 {\n"
+        "  float4 centre = tex2D(image, uv.xy);\n"
+        "  float3 sum = centre.xyz;\n"
+        "  float weight = 1;\n"
+        "  [unroll] for (int k = 0; k < 12; ++k) {\n"
+        "    float4 tap = tex2D(image, (centre.w * offsets[k] + uv).xy);\n"
+        "    sum = tap.xyz * tap.w + sum;\n"
+        "    weight = weight + tap.w;\n"
+        "  }\n"
+        "  return float4(sum / weight, centre.w);\n"
+        "}\n");
+    ASSERT_TRUE(result.ok()) << messages(result);
+    // The centre is read straight from t0 (t0.xy of the float4 input needs no copy).
+    EXPECT_NE(result.assembly.find("texld r0, t0, s0"), std::string::npos) << result.assembly;
+}
+
+// The operands of a multiply folded into an add (mad) were never released when the add was their
+// last use, so twelve chained mads ran out of the 12 temps.
+TEST(HlslTextureReads, OperandsOfAFoldedMultiplyAreReleased) {
+    const auto result = compile_ps(
+        "float4 k[12];\n"
+        "float4 main(float4 a : TEXCOORD0, float4 b : TEXCOORD1) : COLOR0 {\n"
+        "  float4 sum = a;\n"
+        "  [unroll] for (int i = 0; i < 12; ++i) {\n"
+        "    float4 t = sum * k[i] + b;\n"
+        "    sum = t * t.w + sum;\n"
+        "  }\n"
+        "  return sum;\n"
+        "}\n");
+    EXPECT_TRUE(result.ok()) << messages(result);
+}
+
 }  // namespace
