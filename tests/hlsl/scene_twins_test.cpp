@@ -61,6 +61,9 @@ const Twin kTwinTable[] = {
     {"14_textured_phong", 0.0f, "dp3_sat as dp3 + mov_sat, mul + add as mad (Programs 3.4, 3.5 of 000)"},
     {"15_normal_mapping", 0.0f, "m4x3/m3x3 as dp4/dp3 rows, dp3_sat as dp3 + mov_sat, L and E built from dp3s in temps"},
     {"16_perlin_noise", 0.0f, "m4x3/m3x3 as rows, the octave sums and the ramp coordinate fused in another order"},
+    {"17_reflection_refraction", 0.0f, "reflect() and sqrt as rsq + rcp as in the assembly, products fused into mads in another order"},
+    {"18_shadow_map", 0.0f, "m4x4/m3x3 as rows, the 4 depths gathered by movs, the comparison's cmp from the compiler's select"},
+    {"20_depth_of_field", 0.0f, "the 12 blur taps unrolled from a loop, 1/weight as rcp per component, m4x4/m3x3 as rows"},
     {"22_gbuffer", 0.0f, "m4x4 as 4 dp4, the TBN sum, the position's select (cmp) as compiled; the R32F and A2B10G10R10 targets compared as stored (002 listings 4.2, 4.3)"},
 };
 
