@@ -1,7 +1,7 @@
 // Texture reads the HLSL compiler emits: texCUBEbias/tex2Dbias as texldb with the bias in the
 // coordinate's .w, and independent reads that stay independent under ps_2_0's dependent-read rule
-// (a texld into a temp written before counts one level deeper, so the compiler takes temps never
-// written while there are some).
+// (a texld into a temp written before counts one level deeper, so the compiler allocates ps_2_0
+// temps by their dependent-read level), and temps released after a folded multiply.
 #include <gtest/gtest.h>
 
 #include <string>
