@@ -63,7 +63,9 @@ const Twin kTwinTable[] = {
     {"16_perlin_noise", 0.0f, "m4x3/m3x3 as rows, the octave sums and the ramp coordinate fused in another order"},
     {"17_reflection_refraction", 0.0f, "reflect() and sqrt as rsq + rcp as in the assembly, products fused into mads in another order"},
     {"18_shadow_map", 0.0f, "m4x4/m3x3 as rows, the 4 depths gathered by movs, the comparison's cmp from the compiler's select"},
+    {"19_stencil_shadow_volumes", 0.0f, "the extrusion's slt as the compiler's select (sge + lrp: 30 or 0 exactly), m4x4 as rows"},
     {"20_depth_of_field", 0.0f, "the 12 blur taps unrolled from a loop, 1/weight as rcp per component, m4x4/m3x3 as rows"},
+    {"21_hdr_tone_mapping", 0.0f, "the 16-tap downsampling unrolled from a loop, c / (c + 1) as rcp per component, the HSL hue's cmps from the compiler's selects"},
     {"22_gbuffer", 0.0f, "m4x4 as 4 dp4, the TBN sum, the position's select (cmp) as compiled; the R32F and A2B10G10R10 targets compared as stored (002 listings 4.2, 4.3)"},
 };
 
