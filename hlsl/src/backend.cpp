@@ -36,7 +36,7 @@ constexpr uint32_t Undef = 1, Name = 5, MemberName = 6, String = 7, Line = 8, Ex
                    ConstantTrue = 41, ConstantFalse = 42, Constant = 43, ConstantComposite = 44,
                    ConstantNull = 46, Function = 54, FunctionEnd = 56, Variable = 59, Load = 61, Store = 62,
                    AccessChain = 65, InBoundsAccessChain = 66, Decorate = 71, MemberDecorate = 72,
-                   VectorShuffle = 79, CompositeConstruct = 80, CompositeExtract = 81, CopyObject = 83,
+                   VectorShuffle = 79, CompositeConstruct = 80, CompositeExtract = 81, CompositeInsert = 82, CopyObject = 83,
                    Transpose = 84, ImageSampleImplicitLod = 87, ImageSampleExplicitLod = 88,
                    ConvertSToF = 111, ConvertUToF = 112, ImageSampleProjImplicitLod = 91,
                    FNegate = 127, FAdd = 129, FSub = 131, FMul = 133, FDiv = 136, VectorTimesScalar = 142,
@@ -52,7 +52,7 @@ constexpr uint32_t RowMajor = 4, BuiltIn = 11, Binding = 33, UserSemantic = 5635
 namespace glsl {  // GLSL.std.450
 constexpr uint32_t FAbs = 4, Floor = 8, Fract = 10, Sin = 13, Cos = 14, Pow = 26, Exp = 27, Log = 28, Exp2 = 29,
                    Log2 = 30, Sqrt = 31, InverseSqrt = 32, FMin = 37, FMax = 40, FClamp = 43, FMix = 46,
-                   Step = 48, Fma = 50, Length = 66, Distance = 67, Cross = 68, Normalize = 69;
+                   Step = 48, Fma = 50, Length = 66, Distance = 67, Cross = 68, Normalize = 69, Reflect = 71;
 }
 constexpr uint32_t kStorageUniformConstant = 0, kStorageInput = 1, kStorageUniform = 2, kStorageOutput = 3;
 constexpr uint32_t kBuiltInPosition = 0;
@@ -309,6 +309,25 @@ private:
 
     // ---- registers ------------------------------------------------------------------------------
     int allocate_temp() {
+        // In ps_2_0 the free temp of the lowest dependent-read level is taken, one never written
+        // first: the rule counts a texld into a temp written earlier, and a partial write (a
+        // coordinate's .xy) into one that held a texture result, as one level deeper (isa
+        // validator, rule 17), so reusing the lowest free temp made independent reads look like
+        // a chain (scene 16's four noise reads, scene 20's twelve blur taps).
+        if (pixel_) {
+            int best = -1, best_key = 0;
+            for (int r = 0; r < kTempCount; ++r) {
+                if (temp_busy_[static_cast<size_t>(r)]) continue;
+                const int key = temp_written_[static_cast<size_t>(r)] ? texture_level_[static_cast<size_t>(r)] : -2;
+                if (best < 0 || key < best_key) { best = r; best_key = key; }
+            }
+            if (best >= 0) {
+                temp_busy_[static_cast<size_t>(best)] = true;
+                temp_holders_[best] = 0;
+                max_temp_ = std::max(max_temp_, best + 1);
+                return best;
+            }
+        }
         for (int r = 0; r < kTempCount; ++r)
             if (!temp_busy_[static_cast<size_t>(r)]) {
                 temp_busy_[static_cast<size_t>(r)] = true;
@@ -373,6 +392,49 @@ private:
         code_.push_back(text);
         code_origin_.push_back(location_);
         code_line_.push_back({line_location_, location_file_});
+        if (pixel_) track_texture_level(text);
+    }
+
+    // ps_2_0's dependent-read levels of the temps, as the validator counts them (rule 17): a
+    // texld's result is one level above its coordinate and above what its destination held; an
+    // arithmetic result takes its sources' highest level (a partial write keeps the old one too).
+    // Temps are allocated by these levels (allocate_temp), so a read's destination or coordinate
+    // is never a temp that would make an independent read look like a chain.
+    static int temp_in(std::string_view token) {
+        if (!token.empty() && token[0] == '-') token.remove_prefix(1);
+        if (token.size() < 2 || token[0] != 'r' || !std::isdigit(static_cast<unsigned char>(token[1]))) return -1;
+        return std::atoi(std::string(token.substr(1)).c_str());
+    }
+    void track_texture_level(const std::string& text) {
+        const size_t space = text.find(' ');
+        if (space == std::string::npos) return;
+        const std::string mnemonic = text.substr(0, text.find_first_of("_ "));
+        std::vector<std::string> operands;
+        std::stringstream list(text.substr(space + 1));
+        for (std::string item; std::getline(list, item, ',');) {
+            const size_t first = item.find_first_not_of(' ');
+            operands.push_back(first == std::string::npos ? "" : item.substr(first));
+        }
+        if (operands.empty() || mnemonic == "texkill") return;
+        const int d = temp_in(operands[0]);
+        if (d < 0 || d >= kTempCount) return;
+        const auto D = static_cast<size_t>(d);
+        if (mnemonic.rfind("texld", 0) == 0) {
+            int order = 0;
+            if (operands.size() > 1)
+                if (const int c = temp_in(operands[1]); c >= 0 && c < kTempCount)
+                    order = std::max(1, texture_level_[static_cast<size_t>(c)] + 1);
+            if (temp_written_[D]) order = std::max(order, std::max(1, texture_level_[D] + 1));
+            texture_level_[D] = order;
+        } else {
+            int from = -1;
+            for (size_t k = 1; k < operands.size(); ++k)
+                if (const int r = temp_in(operands[k]); r >= 0 && r < kTempCount)
+                    from = std::max(from, texture_level_[static_cast<size_t>(r)]);
+            const bool full = operands[0].find('.') == std::string::npos;
+            texture_level_[D] = full ? from : std::max(texture_level_[D], from);
+        }
+        temp_written_[D] = true;
     }
 
     static bool swizzle_allowed_in_ps(const std::array<uint8_t, 4>& s) {
@@ -453,7 +515,12 @@ private:
     // One instruction: `dest` with `mask`; sources legalized for swizzles and read ports.
     void emit(const std::string& mnemonic, const std::string& dest, uint8_t mask, std::vector<Value> sources,
               bool identity_sources = false) {
-        // Read ports: at most 2 distinct c#, 1 v#, 1 t# per instruction.
+        // Dot products and the vector macros read their sources' components whatever the mask.
+        const uint8_t read_mask = mnemonic == "dp4" ? 0xF
+                                  : (mnemonic == "dp3" || mnemonic == "nrm" || mnemonic == "crs") ? 0x7
+                                                                                                  : mask;
+        // Read ports: at most 2 distinct c#, 1 v#, 1 t# per instruction (a source moved to a temp
+        // keeps every component the instruction reads: dp3 t0, t1 reads .xyz of both).
         std::map<char, std::set<int>> seen;
         for (auto& s : sources) {
             if (s.file == 'r') continue;
@@ -462,17 +529,13 @@ private:
             const size_t limit = s.file == 'c' ? 2 : 1;
             if (set.size() > limit) {
                 set.erase(s.index);
-                s = materialize(s, mask);
+                s = materialize(s, read_mask);
             }
         }
         std::string text = mnemonic + " " + dest + mask_text(mask);
         // Scalar instructions read one component, named by a replicate swizzle.
         const bool scalar = mnemonic == "rcp" || mnemonic == "rsq" || mnemonic == "exp" || mnemonic == "log" ||
                             mnemonic == "pow";
-        // Dot products and the vector macros read their sources' components whatever the mask.
-        const uint8_t read_mask = mnemonic == "dp4" ? 0xF
-                                  : (mnemonic == "dp3" || mnemonic == "nrm" || mnemonic == "crs") ? 0x7
-                                                                                                  : mask;
         for (auto& s : sources) {
             auto swizzle = source_swizzle(s, read_mask);
             if (scalar) {
@@ -551,8 +614,19 @@ private:
         values_[id] = v;
     }
 
+    // `id` is read again at `later` (a mul folded into an add, a comparison's operands read by the
+    // select): its last use moves there, and it is released there with the instruction's own operands.
+    void extend_last_use(uint32_t id, size_t later) {
+        size_t& last = last_use_[id];
+        if (later <= last) return;
+        last = later;
+        released_also_at_[later].push_back(id);
+    }
+
     // Temps no value holds any more go back to the pool after each SPIR-V instruction.
     void release_after(size_t position, std::vector<uint32_t> used) {
+        if (auto also = released_also_at_.find(position); also != released_also_at_.end())
+            used.insert(used.end(), also->second.begin(), also->second.end());
         std::sort(used.begin(), used.end());
         used.erase(std::unique(used.begin(), used.end()), used.end());  // float4(x, x, x, x) holds x once
         for (uint32_t id : used) {
@@ -576,13 +650,14 @@ private:
         for (size_t k = first; k < ins.words.size(); ++k) ids.push_back(ins.words[k]);
         if (ins.opcode == op::VectorShuffle) ids.resize(std::min<size_t>(ids.size(), 2));
         if (ins.opcode == op::CompositeExtract) ids.resize(std::min<size_t>(ids.size(), 1));
+        if (ins.opcode == op::CompositeInsert) ids.resize(std::min<size_t>(ids.size(), 2));
         return ids;
     }
 
     void generate() {
         // Blocks, uses, and the branches and loops that become if b# / rep i# (vs_2_0).
         analyze_flow();
-        // Uniform registers: the $Global members in declaration order, then the literals.
+        // Uniform registers: the $Global members at their register(cN) or in declaration order, then the literals.
         assign_uniform_registers();
         // Last uses, with a mul folded into the add that is its only user (mad) counted at the add.
         std::unordered_map<uint32_t, int> use_count;
@@ -609,7 +684,7 @@ private:
                 if (m.opcode != op::FMul && m.opcode != op::VectorTimesScalar) continue;
                 if (fused_.count(id) || fused_.count(m.words[2]) || fused_.count(m.words[3])) continue;
                 fused_.insert(id);
-                for (int j = 2; j < 4; ++j) last_use_[m.words[static_cast<size_t>(j)]] = std::max(last_use_[m.words[static_cast<size_t>(j)]], i);
+                for (int j = 2; j < 4; ++j) extend_last_use(m.words[static_cast<size_t>(j)], i);
                 break;
             }
         }
@@ -1046,6 +1121,28 @@ private:
             const uint32_t pointee_id = types_.at(pointer_type).element;
             const Type& pointee = types_.at(pointee_id);
             if (storage == kStorageUniform && pointee.opcode == op::TypeStruct) {
+                // `: register(cN)` places a uniform at cN (as fxc does); the others follow one
+                // another in declaration order from c0, skipping the registers placed ones hold.
+                std::vector<std::optional<uint32_t>> placed(pointee.members.size());
+                std::vector<std::pair<uint32_t, uint32_t>> taken;  // [first, end) of explicit placements
+                const uint32_t limit = pixel_ ? 32u : 256u;
+                for (size_t m = 0; m < pointee.members.size(); ++m) {
+                    const auto member = static_cast<uint32_t>(m);
+                    placed[m] = explicit_constant_register(member_name(pointee_id, member));
+                    if (!placed[m]) continue;
+                    const bool row_major = member_decorations_[pointee_id][member].count(decoration::RowMajor) > 0;
+                    const uint32_t first = *placed[m], end = first + register_size(pointee.members[m], row_major);
+                    if (end > limit)
+                        throw CompileError("'" + member_name(pointee_id, member) + "' at register(c" + std::to_string(first) +
+                                           ") runs past c" + std::to_string(limit - 1) + ", the last constant register of " + profile());
+                    for (const auto& [f, e] : taken)
+                        if (first < e && f < end)
+                            throw CompileError("'" + member_name(pointee_id, member) + "' at register(c" + std::to_string(first) +
+                                               ") overlaps another uniform's registers c" + std::to_string(f) + "..c" +
+                                               std::to_string(e - 1));
+                    taken.emplace_back(first, end);
+                }
+                uint32_t end_of_all = 0;
                 for (size_t m = 0; m < pointee.members.size(); ++m) {
                     const auto member = static_cast<uint32_t>(m);
                     const bool flow_bool = flow_bool_members_.count({pointee_id, member}) > 0;
@@ -1065,12 +1162,24 @@ private:
                         constants_table_.push_back(std::move(info));
                         continue;
                     }
-                    member_register_[{pointee_id, member}] = next;
                     const bool spirv_row_major = member_decorations_[pointee_id][member].count(decoration::RowMajor) > 0;
                     const uint32_t size = register_size(pointee.members[m], spirv_row_major);
+                    uint32_t at = next;
+                    if (placed[m]) {
+                        at = *placed[m];
+                    } else {
+                        for (bool moved = true; moved;) {
+                            moved = false;
+                            for (const auto& [f, e] : taken)
+                                if (next < e && f < next + size) { next = e; moved = true; }
+                        }
+                        at = next;
+                        next += size;
+                    }
+                    member_register_[{pointee_id, member}] = at;
                     isa::ConstantInfo info;
                     info.name = member_name(pointee_id, member);
-                    info.register_index = static_cast<uint16_t>(next);
+                    info.register_index = static_cast<uint16_t>(at);
                     info.register_count = static_cast<uint16_t>(size);
                     info.type = constant_type(pointee.members[m], spirv_row_major);
                     if (info.type.parameter_type == isa::parameter_type::Int && declared_bool(info.name))
@@ -1078,8 +1187,9 @@ private:
                     if (auto values = literal_initializer(info.name))
                         info.default_value = default_registers(info.type, info.register_count, *values);
                     constants_table_.push_back(std::move(info));
-                    next += size;
+                    end_of_all = std::max(end_of_all, at + size);
                 }
+                next = end_of_all;
             } else if (storage == kStorageUniformConstant && pointee.opcode == op::TypeSampledImage) {
                 auto d = decorations_.find(id);
                 int s;
@@ -1147,6 +1257,30 @@ private:
                 return i;
         }
         return std::nullopt;
+    }
+
+    // `: register(cN)` (or `register(CN)`) in a global's declaration, before its initializer.
+    std::optional<uint32_t> explicit_constant_register(const std::string& name) const {
+        const auto at = global_declaration(name);
+        if (!at) return std::nullopt;
+        const size_t end = std::min(source_.find(';', *at), source_.find('=', *at));
+        const std::string_view declaration = source_.substr(*at, end == std::string_view::npos ? std::string_view::npos : end - *at);
+        size_t k = declaration.find("register");
+        if (k == std::string_view::npos) return std::nullopt;
+        k += 8;
+        auto skip_space = [&] { while (k < declaration.size() && std::isspace(static_cast<unsigned char>(declaration[k]))) ++k; };
+        skip_space();
+        if (k >= declaration.size() || declaration[k] != '(') return std::nullopt;
+        ++k;
+        skip_space();
+        if (k >= declaration.size() || (declaration[k] != 'c' && declaration[k] != 'C')) return std::nullopt;
+        ++k;
+        uint32_t index = 0;
+        const size_t digits = k;
+        while (k < declaration.size() && std::isdigit(static_cast<unsigned char>(declaration[k])) && index < 100000)
+            index = index * 10 + static_cast<uint32_t>(declaration[k++] - '0');
+        if (k == digits) return std::nullopt;
+        return index;
     }
 
     // glslang stores a bool uniform as a 32-bit unsigned integer; the declaration says which.
@@ -1436,7 +1570,28 @@ private:
             define(w.at(1), construct(parts));
             return;
         }
+        case op::CompositeInsert: {  // `v.w = x`: the vector with one component replaced
+            const Value object = as_register(w.at(2)), composite = value(w.at(3));
+            if (composite.kind != Value::Kind::Register || w.size() != 5)
+                throw CompileError("inserting into this value (a struct, array or matrix) is not supported");
+            std::vector<Value> parts;
+            for (uint32_t c = 0; c < composite.count; ++c)
+                parts.push_back(c == w.at(4) ? component_view(object, 0) : component_view(composite, c));
+            define(w.at(1), construct(parts));
+            return;
+        }
         case op::CompositeConstruct: {
+            // A scalar comparison splat to a bool vector (`flag > 0 ? v3 : 0`): the comparison
+            // itself, which the select applies to every component.
+            if (value(w.at(2)).kind == Value::Kind::Condition) {
+                for (size_t k = 3; k < w.size(); ++k)
+                    if (w[k] != w[2]) throw CompileError("a vector of different comparisons is not supported in a select");
+                const Value c = value(w.at(2));
+                extend_last_use(c.lhs, last_use_[w.at(1)]);
+                extend_last_use(c.rhs, last_use_[w.at(1)]);
+                define(w.at(1), c);
+                return;
+            }
             std::vector<Value> parts;
             for (size_t k = 2; k < w.size(); ++k) {
                 const Value p = as_register(w[k]);
@@ -1517,7 +1672,7 @@ private:
             if (c.kind != Value::Kind::Condition) throw CompileError("boolean logic beyond one comparison is not supported");
             c.negate = !c.negate;
             for (uint32_t operand : {c.lhs, c.rhs})  // the comparison's operands live as long as the negation
-                if (operand != 0) last_use_[operand] = std::max(last_use_[operand], last_use_[w.at(1)]);
+                if (operand != 0) extend_last_use(operand, last_use_[w.at(1)]);
             define(w.at(1), c);
             return;
         }
@@ -1540,15 +1695,26 @@ private:
         case op::ImageSampleImplicitLod:
         case op::ImageSampleProjImplicitLod: {
             if (!pixel_) throw CompileError("texture sampling in a vertex shader needs vs_3_0 (vs_2_0 has no texld)");
-            if (w.size() > 4) throw CompileError("texture sampling with bias, offsets or gradients is not supported");
+            // tex2Dbias/texCUBEbias/tex3Dbias (t.w the bias): the Bias image operand (mask 0x1).
+            const bool bias = ins.opcode == op::ImageSampleImplicitLod && w.size() == 6 && w.at(4) == 0x1;
+            if (w.size() > 4 && !bias) throw CompileError("texture sampling with offsets or gradients is not supported");
             const Value s = value(w.at(2));
             if (s.kind != Value::Kind::Sampler) throw CompileError("internal error: sampling without a sampler");
             Value coord = as_register(w.at(3));
-            if (!(coord.file == 'r' || coord.file == 't') || coord.negate ||
-                coord.swizzle != std::array<uint8_t, 4>{0, 1, 2, 3} || coord.count == 1)
+            if (bias) {  // texldb reads the bias from the coordinate's .w
+                std::vector<Value> parts;
+                for (uint32_t c = 0; c < 3; ++c) parts.push_back(component_view(coord, std::min(c, coord.count - 1)));
+                parts.push_back(component_view(as_register(w.at(5)), 0));
+                coord = construct(parts);
+            }
+            // The register as it is when the coordinate is its first components (t0.xy of a float4
+            // input: texld reads the components the texture needs), else moved to a temp.
+            bool leading = coord.count >= 2;
+            for (uint32_t c = 0; c < coord.count && leading; ++c) leading = coord.swizzle[c] == c;
+            if (!(coord.file == 'r' || coord.file == 't') || coord.negate || !leading)
                 coord = materialize(coord, mask_of(std::max<uint32_t>(coord.count, 2)));
             Value d = new_temp(4);
-            line(std::string(ins.opcode == op::ImageSampleProjImplicitLod ? "texldp " : "texld ") + temp_name(d) +
+            line(std::string(ins.opcode == op::ImageSampleProjImplicitLod ? "texldp " : bias ? "texldb " : "texld ") + temp_name(d) +
                  ", " + register_name(coord) + ", s" + std::to_string(s.sampler));
             define(w.at(1), d);
             return;
@@ -1580,8 +1746,8 @@ private:
             c.compare = ins.opcode;
             c.lhs = w.at(2);
             c.rhs = w.at(3);
-            last_use_[c.lhs] = std::max(last_use_[c.lhs], last_use_[w.at(1)]);
-            last_use_[c.rhs] = std::max(last_use_[c.rhs], last_use_[w.at(1)]);
+            extend_last_use(c.lhs, last_use_[w.at(1)]);
+            extend_last_use(c.rhs, last_use_[w.at(1)]);
             define(w.at(1), c);
             return;
         }
@@ -1614,7 +1780,13 @@ private:
             if (flow != flow_registers_.end())
                 throw CompileError("the uniform '" + member_name(p.pointee, index) + "' lives in " + flow->second +
                                    " (it decides an if or counts a loop) and cannot also be read as a value");
-            p.index = static_cast<int>(member_register_.at({p.pointee, index}));
+            const auto placed = member_register_.find({p.pointee, index});
+            if (placed != member_register_.end()) {  // a member of the $Global block: its register
+                p.index = static_cast<int>(placed->second);
+            } else {  // a member of a struct inside it (an array of structs): after the ones before it
+                for (uint32_t m = 0; m < index; ++m)
+                    p.index += static_cast<int>(register_size(t.members[m], member_decorations_[p.pointee][m].count(decoration::RowMajor) > 0));
+            }
             const auto& md = member_decorations_[p.pointee][index];
             p.row_major = md.count(decoration::RowMajor) > 0;
             p.pointee = t.members[index];
@@ -1905,6 +2077,16 @@ private:
             define(result, d);
             return;
         }
+        case glsl::Reflect: {  // reflect(i, n) = i - 2 dot(n, i) n: dp, add, mad (fxc's sequence)
+            const Value i = arg(0), n = arg(1);
+            Value k = dot(n, i);
+            emit("add", temp_name(k), 1, {k, k});
+            k.negate = true;
+            Value d = new_temp(count);
+            emit("mad", temp_name(d), mask, {n, k, i});
+            define(result, d);
+            return;
+        }
         case glsl::Step: {  // step(edge, x) = x >= edge ? 1 : 0
             Value c;
             c.kind = Value::Kind::Condition;
@@ -2058,12 +2240,15 @@ private:
 
     std::unordered_map<uint32_t, Value> values_;
     std::unordered_map<uint32_t, size_t> last_use_;
+    std::unordered_map<size_t, std::vector<uint32_t>> released_also_at_;  // extend_last_use
     std::set<uint32_t> fused_;
     std::unordered_map<uint32_t, std::pair<Value, Value>> fused_operands_;
     std::array<bool, kTempCount> temp_busy_{};
     std::map<int, int> temp_holders_;
     std::vector<int> scratch_;
     int max_temp_ = 0;
+    std::array<int, 16> texture_level_{};      // ps: track_texture_level
+    std::array<bool, 16> temp_written_{};
 
     std::map<std::string, std::string> declarations_;
     std::vector<std::string> code_;

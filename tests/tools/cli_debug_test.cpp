@@ -232,8 +232,9 @@ TEST(CliDebug, HlslPixelShaderStepsByHlslLine) {
     ASSERT_TRUE(j.is_object()) << j.dump();
     EXPECT_NE(j["source"].get<std::string>().find("HLSL"), std::string::npos) << j["source"];
     ASSERT_EQ(j["steps"].size(), 4u) << j.dump();
-    const std::vector<std::string> texts = {"mad r0.xyz, t0, c2.x, -c2.y", "dp3 r1.x, r0, c0", "mad r0, c1, r1.x, t0.w",
-                                            "mov oC0, r0"};
+    // r2 for the result: ps_2_0 temps are taken by dependent-read level, one never written first.
+    const std::vector<std::string> texts = {"mad r0.xyz, t0, c2.x, -c2.y", "dp3 r1.x, r0, c0", "mad r2, c1, r1.x, t0.w",
+                                            "mov oC0, r2"};
     const std::vector<unsigned> lines = {6, 7, 9, 9};
     for (size_t i = 0; i < texts.size(); ++i) {
         EXPECT_EQ(j["steps"][i]["text"], texts[i]) << i;
@@ -257,8 +258,8 @@ TEST(CliDebug, HlslPixelShaderStepsByHlslLine) {
     EXPECT_NEAR(n["lanes"][1][2].get<double>(), -1, 1e-6);
     EXPECT_NEAR(write_of(j["steps"][1], "r1")["lanes"][1][0].get<double>(), 4, 1e-6);
     EXPECT_NEAR(write_of(j["steps"][1], "r1")["lanes"][0][0].get<double>(), 2, 1e-6);
-    expect_vec(write_of(j["steps"][2], "r0")["lanes"][1], 3, 2, 5, 9, "r0 at the pixel");
-    expect_vec(write_of(j["steps"][2], "r0")["lanes"][0], 2, 1.5, 3, 5, "r0 at (0, 2)");
+    expect_vec(write_of(j["steps"][2], "r2")["lanes"][1], 3, 2, 5, 9, "r2 at the pixel");
+    expect_vec(write_of(j["steps"][2], "r2")["lanes"][0], 2, 1.5, 3, 5, "r2 at (0, 2)");
     expect_vec(write_of(j["steps"][3], "oC0")["lanes"][1], 3, 2, 5, 9, "oC0");
 }
 

@@ -113,6 +113,41 @@ TEST(HlslCompile, SwizzlesAndArithmetic) {
     expect_near(run_output(ps, "--const c0=1,2,3,4", "oC0"), {10, 9, 8, 3});
 }
 
+TEST(HlslCompile, AssigningOneComponentOfAVector) {
+    // c = tex (here the constant k = (0.5, 0.25, 1, 0.8)) with c.w scaled by s = 0.5 and c.y set
+    // to 2: (0.5, 2, 1, 0.4). glslang writes these as OpCompositeInsert.
+    const auto ps = compile("insert",
+                            "float4 k : register(c1);\nfloat s : register(c0);\n"
+                            "float4 main() : COLOR { float4 c = k; c.w *= s; c.y = 2; return c; }\n", "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "--const c0=0.5,0,0,0 --const c1=0.5,0.25,1,0.8", "oC0"), {0.5f, 2, 1, 0.4f});
+}
+
+TEST(HlslCompile, ReflectAndArraysOfStructs) {
+    // reflect(i, n) = i - 2 dot(n, i) n: i = (1, -1, 0.5), n = (0, 1, 0): dot = -1,
+    // i + 2 n = (1, 1, 0.5). The struct L takes 2 registers (pos, pn), so lights[0] is c0..c1 and
+    // lights[1] c2..c3: lights[1].pos = c2 = (0, 0, 1), lights[0].pn = c1.x = 3;
+    // (1, 1, 0.5) + (0, 0, 1) * 3 = (1, 1, 3.5).
+    const auto ps = compile("reflect",
+                            "struct L { float3 pos; float pn; };\nL lights[2];\n"
+                            "float4 main(float3 i : TEXCOORD0, float3 n : TEXCOORD1) : COLOR {\n"
+                            "  return float4(reflect(i, n) + lights[1].pos * lights[0].pn, 1);\n}\n", "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "--input t0=1,-1,0.5 --input t1=0,1,0 --const c1=3,0,0,0 --const c2=0,0,1,0", "oC0"),
+                {1, 1, 3.5f, 1});
+}
+
+TEST(HlslCompile, ScalarConditionSelectsAVector) {
+    // flag > 0 ? k.xyz : 0, the comparison splat over three components: k = (0.25, 0.5, 0.75)
+    // where flag = 1, zeros where flag = 0.
+    const auto ps = compile("select_splat",
+                            "float4 k;\nfloat flag;\n"
+                            "float4 main() : COLOR { return float4(flag > 0 ? k.xyz : 0, 1); }\n", "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    expect_near(run_output(ps, "--const c0=0.25,0.5,0.75,1 --const c1=1,0,0,0", "oC0"), {0.25f, 0.5f, 0.75f, 1});
+    expect_near(run_output(ps, "--const c0=0.25,0.5,0.75,1 --const c1=0,0,0,0", "oC0"), {0, 0, 0, 1});
+}
+
 TEST(HlslCompile, Intrinsics) {
     // u = (4, 16, 0.25, 3): sqrt(4) = 2, rsqrt(16) = 0.25, lerp(2, 6, 0.25) = 3, max(3, 1) - min(3, 1) = 2.
     const auto ps = compile("intrinsics",
