@@ -420,6 +420,124 @@ TEST(ApitraceImport, TextureUploadsBecomeLockRectAndLockBox) {
     EXPECT_EQ(box_bytes, 8u * 8u * 4u * 4u);
 }
 
+// locks_reset (tests/data/traces/src/locks_reset.c, captured under Wine): a LockBox with a box,
+// LockRect of a D16_LOCKABLE depth surface whole and through a rectangle, and Reset to a smaller
+// back buffer. Every call is imported or accepted; the statements carry the box, the rectangle
+// and only their bytes; the replay draws Wine's two frames exactly and stores the depth values
+// Wine read back (depth.txt). Wine refuses to lock its D32F_LOCKABLE surface (D3DERR_INVALIDCALL,
+// in depth.txt), so that LockRect is a failed call: accepted, no statement.
+TEST(ApitraceImport, PartialVolumeAndDepthUploadsAndResetOfLocksReset) {
+    const ImportResult r = import_file("locks_reset");
+    ASSERT_FALSE(r.error) << r.error->to_string();
+    EXPECT_EQ(r.report.skipped, 0u) << r.report.to_string();
+    std::vector<const cs::Statement*> boxes, depth_locks;
+    const cs::Statement* reset = nullptr;
+    std::string d16;
+    for (const auto& st : r.stream.statements) {
+        if (st.name == "LockBox") boxes.push_back(&st);
+        if (st.name == "CreateDepthStencilSurface" && st.arguments.at(3).text == "D16_LOCKABLE") d16 = st.arguments[0].text;
+        if (st.name == "LockRect" && !d16.empty() && st.arguments.at(0).text == d16) depth_locks.push_back(&st);
+        if (st.name == "Reset") reset = &st;
+    }
+    // LockBox vol 0 (whole, 4x4x4 texels of 4 bytes), then LockBox vol 0 { 1 1 1 3 3 2 } with the
+    // box's 2x2x1 texels: B G R A of 0xFFFF0000 + x 0x80 + y 0x8000.
+    ASSERT_EQ(boxes.size(), 2u);
+    ASSERT_EQ(boxes[0]->arguments.size(), 3u);
+    EXPECT_EQ(boxes[0]->arguments[2].bytes.size(), 256u);
+    ASSERT_EQ(boxes[1]->arguments.size(), 4u);
+    std::vector<int64_t> box;
+    for (const auto& v : boxes[1]->arguments[2].items) box.push_back(v.integer);
+    EXPECT_EQ(box, (std::vector<int64_t>{1, 1, 1, 3, 3, 2}));
+    const std::vector<uint8_t> texels{0x00, 0x00, 0xFF, 0xFF, 0x80, 0x00, 0xFF, 0xFF,
+                                      0x00, 0x80, 0xFF, 0xFF, 0x80, 0x80, 0xFF, 0xFF};
+    ASSERT_EQ(boxes[1]->arguments[3].bytes.size(), texels.size());
+    for (size_t i = 0; i < texels.size(); ++i)
+        EXPECT_EQ(static_cast<uint8_t>(boxes[1]->arguments[3].bytes[i]), texels[i]) << i;
+    // LockRect ds 0 (whole, 4x4 16-bit values) and LockRect ds 0 { 1 2 3 4 } (2x2 values).
+    ASSERT_FALSE(d16.empty());
+    ASSERT_EQ(depth_locks.size(), 2u);
+    EXPECT_EQ(depth_locks[0]->arguments.size(), 3u);
+    EXPECT_EQ(depth_locks[0]->arguments.back().bytes.size(), 32u);
+    ASSERT_EQ(depth_locks[1]->arguments.size(), 4u);
+    std::vector<int64_t> rect;
+    for (const auto& v : depth_locks[1]->arguments[2].items) rect.push_back(v.integer);
+    EXPECT_EQ(rect, (std::vector<int64_t>{1, 2, 3, 4}));
+    EXPECT_EQ(depth_locks[1]->arguments[3].bytes.size(), 8u);
+    ASSERT_TRUE(reset);
+    EXPECT_EQ(reset->arguments.at(0).integer, 128);
+    EXPECT_EQ(reset->arguments.at(1).integer, 96);
+
+    // The depth values, replayed up to the surface's Release: Wine's read-back, row by row.
+    std::ifstream depth_txt(trace_path("locks_reset/depth.txt"));
+    std::vector<uint32_t> wine_depth;
+    std::string line;
+    for (int row = 0; row < 4 && std::getline(depth_txt, line); ++row) {
+        std::istringstream values(line);
+        for (uint32_t v; values >> v;) wine_depth.push_back(v);
+    }
+    ASSERT_EQ(wine_depth.size(), 16u);
+    EXPECT_EQ(wine_depth[2 * 4 + 1], 0xF000u);  // the rectangle's first value
+    std::getline(depth_txt, line);
+    EXPECT_NE(line.find("LockRect failed, hr=0x8876086c"), std::string::npos) << line;  // D32F_LOCKABLE
+    cs::Stream until_release;
+    for (const auto& st : r.stream.statements) {
+        if (st.name == "Release" && !st.arguments.empty() && st.arguments[0].text == d16) break;
+        until_release.statements.push_back(st);
+    }
+    {
+        DeviceOptions options;
+        options.output_dir = "frames";  // not written
+        options.write_image = [](const Surface&, const std::string&) {};
+        Device device(options);
+        const ReplayResult replayed = replay(device, until_release);
+        for (const auto& d : replayed.diagnostics) ADD_FAILURE() << d.to_string();
+        const DepthStencilSurface* ds = device.depth_stencil(d16);
+        ASSERT_NE(ds, nullptr);
+        for (uint32_t y = 0; y < 4; ++y)
+            for (uint32_t x = 0; x < 4; ++x) EXPECT_EQ(ds->stored_depth(x, y), wine_depth[y * 4 + x]) << x << "," << y;
+    }
+
+    // The frames: exact. Frame 0's 4x4 block at (8, 8) is slice 1 of the volume, one texel per
+    // pixel: the box's texels at (9..10, 9..10), the whole fill's 0x404040 around them.
+    std::vector<Surface> frames;
+    DeviceOptions options;
+    options.output_dir = "frames";  // not written: write_image keeps the surfaces
+    options.write_image = [&](const Surface& s, const std::string&) { frames.push_back(s); };
+    Device device(options);
+    const ReplayResult replayed = replay(device, r.stream);
+    for (const auto& d : replayed.diagnostics) ADD_FAILURE() << d.to_string();
+    ASSERT_EQ(frames.size(), 2u);
+    const auto channel = [](float v) { return static_cast<int>(std::lround(v * 255.0f)); };
+    for (uint32_t f = 0; f < 2; ++f) {
+        const Image expected = read_image(trace_path("locks_reset/frame_" + std::to_string(f) + ".png"));
+        ASSERT_EQ(frames[f].width(), expected.width) << f;
+        ASSERT_EQ(frames[f].height(), expected.height) << f;
+        EXPECT_EQ(expected.width, f == 0 ? 256u : 128u);
+        uint32_t differing = 0;
+        for (uint32_t y = 0; y < expected.height; ++y)
+            for (uint32_t x = 0; x < expected.width; ++x) {
+                const Float4 got = frames[f].read(x, y);
+                for (unsigned c = 0; c < 3; ++c)
+                    if (channel(got[c]) != channel(expected.rgba[(y * expected.width + x) * 4 + c])) {
+                        ++differing;
+                        break;
+                    }
+            }
+        EXPECT_EQ(differing, 0u) << "frame " << f;
+    }
+    const auto rgb = [&](uint32_t x, uint32_t y) {
+        const Float4 v = frames[0].read(x, y);
+        return static_cast<uint32_t>(channel(v[0]) << 16 | channel(v[1]) << 8 | channel(v[2]));
+    };
+    EXPECT_EQ(rgb(9, 9), 0xFF0000u);
+    EXPECT_EQ(rgb(10, 9), 0xFF0080u);
+    EXPECT_EQ(rgb(9, 10), 0xFF8000u);
+    EXPECT_EQ(rgb(10, 10), 0xFF8080u);
+    EXPECT_EQ(rgb(8, 8), 0x404040u);
+    EXPECT_EQ(rgb(11, 11), 0x404040u);
+    EXPECT_EQ(rgb(12, 12), 0x000000u);
+}
+
 // A trace cut inside its event stream: the calls before the cut are imported, and the error
 // names the byte where the data ended.
 TEST(ApitraceImport, TruncatedTraceStopsWithItsError) {
