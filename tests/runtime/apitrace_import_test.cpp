@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -536,6 +537,136 @@ TEST(ApitraceImport, PartialVolumeAndDepthUploadsAndResetOfLocksReset) {
     EXPECT_EQ(rgb(8, 8), 0x404040u);
     EXPECT_EQ(rgb(11, 11), 0x404040u);
     EXPECT_EQ(rgb(12, 12), 0x000000u);
+}
+
+// A hand-made event stream (the format before Snappy, as apitrace_reader_test.cpp writes it):
+// what Wine cannot capture. Wine refuses to lock a D32F_LOCKABLE surface, so its uploads are
+// built here: LockRect of the whole 2x2 surface (pitch 8) and of the rectangle { 1 0 2 2 }, whose
+// copy runs from its first value to its last (12 bytes: 4, a gap of 4, 4), then an upload to a
+// D24S8 surface, which D3D9 cannot lock: skipped with the reason.
+struct EventWriter {
+    std::vector<std::byte> out;
+    EventWriter& byte(uint8_t b) {
+        out.push_back(std::byte{b});
+        return *this;
+    }
+    EventWriter& uint(uint64_t v) {
+        do {
+            uint8_t b = v & 0x7F;
+            v >>= 7;
+            if (v) b |= 0x80;
+            byte(b);
+        } while (v);
+        return *this;
+    }
+    EventWriter& str(std::string_view text) {
+        uint(text.size());
+        for (char c : text) byte(static_cast<uint8_t>(c));
+        return *this;
+    }
+    EventWriter& arg(uint64_t index) { return byte(1).uint(index); }
+    EventWriter& u(uint64_t v) { return byte(4).uint(v); }
+    EventWriter& ptr(uint64_t p) { return byte(13).uint(p); }
+    EventWriter& one() { return byte(11).uint(1); }  // a pointer to one value: an array of one
+    EventWriter& enter(uint64_t id, std::string_view name, std::initializer_list<std::string_view> args) {
+        byte(0).uint(0).uint(id).str(name).uint(args.size());
+        for (auto a : args) str(a);
+        return *this;
+    }
+    EventWriter& enter_again(uint64_t id) { return byte(0).uint(0).uint(id); }
+    EventWriter& leave(uint64_t call) { return byte(1).uint(call); }
+    EventWriter& floats(std::initializer_list<float> values) {
+        byte(8).uint(values.size() * 4);
+        for (float f : values) {
+            const auto bits = std::bit_cast<uint32_t>(f);
+            for (int i = 0; i < 4; ++i) byte(static_cast<uint8_t>(bits >> (8 * i)));
+        }
+        return *this;
+    }
+};
+
+TEST(ApitraceImport, LockableDepthUploadsOfAHandMadeTrace) {
+    EventWriter w;
+    w.uint(6).uint(6).str("");
+    w.enter(0, "IDirect3D9::CreateDevice", {"this", "pPresentationParameters", "ppReturnedDeviceInterface"});
+    w.arg(0).ptr(0x10).arg(1).one().byte(12).uint(0).str("D3DPRESENT_PARAMETERS").uint(5).str("BackBufferWidth");
+    w.str("BackBufferHeight").str("BackBufferFormat").str("EnableAutoDepthStencil").str("AutoDepthStencilFormat");
+    w.u(2).u(2).u(21).u(0).u(0).byte(0);  // 2x2 A8R8G8B8, no auto depth
+    w.leave(0).arg(2).one().ptr(0x100).byte(0);
+    const auto create_ds = [&](uint64_t call, uint64_t format, uint64_t surface) {
+        if (call == 1) w.enter(1, "IDirect3DDevice9::CreateDepthStencilSurface", {"this", "Width", "Height", "Format", "ppSurface"});
+        else w.enter_again(1);
+        w.arg(0).ptr(0x100).arg(1).u(2).arg(2).u(2).arg(3).u(format).byte(0);
+        w.leave(call).arg(4).one().ptr(surface).byte(0);
+    };
+    const auto lock = [&](uint64_t call, uint64_t surface, bool rect, uint64_t bits) {
+        if (call == 2) w.enter(2, "IDirect3DSurface9::LockRect", {"this", "pLockedRect", "pRect", "Flags"});
+        else w.enter_again(2);
+        w.arg(0).ptr(surface).arg(2);
+        if (rect) {
+            w.one().byte(12).uint(2);
+            if (call == 5) w.str("RECT").uint(4).str("left").str("top").str("right").str("bottom");
+            w.u(1).u(0).u(2).u(2);
+        } else {
+            w.byte(0);  // NULL: the whole surface
+        }
+        w.arg(3).u(0).byte(0);
+        w.leave(call).arg(1).one().byte(12).uint(1);
+        if (call == 2) w.str("D3DLOCKED_RECT").uint(2).str("Pitch").str("pBits");
+        w.u(8).ptr(bits).byte(0);
+    };
+    const auto copy = [&](uint64_t call, uint64_t dest, std::initializer_list<float> values) {
+        if (call == 3) w.enter(3, "memcpy", {"dest", "src", "n"});
+        else w.enter_again(3);
+        w.arg(0).ptr(dest).arg(1).floats(values).arg(2).u(values.size() * 4).byte(0);
+        w.leave(call).byte(0);
+    };
+    const auto unlock = [&](uint64_t call, uint64_t surface) {
+        if (call == 4) w.enter(4, "IDirect3DSurface9::UnlockRect", {"this"});
+        else w.enter_again(4);
+        w.arg(0).ptr(surface).byte(0);
+        w.leave(call).byte(0);
+    };
+    create_ds(1, 82, 0x200);  // D32F_LOCKABLE
+    lock(2, 0x200, false, 0x1000);
+    copy(3, 0x1000, {1.0f, 1.0f, 1.0f, 1.0f});
+    unlock(4, 0x200);
+    lock(5, 0x200, true, 0x2004);
+    copy(6, 0x2004, {0.25f, -7.0f, 0.5f});  // -7: the row's pad, not the rectangle's
+    unlock(7, 0x200);
+    create_ds(8, 75, 0x300);  // D24S8
+    lock(9, 0x300, false, 0x3000);
+    copy(10, 0x3000, {0.0f, 0.0f, 0.0f, 0.0f});
+
+    std::optional<Error> error;
+    auto reader = Reader::open(w.out, error, true);
+    ASSERT_TRUE(reader) << (error ? error->to_string() : "");
+    const ImportResult r = import_d3d9(*reader);
+    ASSERT_FALSE(r.error) << r.error->to_string();
+    EXPECT_EQ(r.report.calls, 11u);
+    EXPECT_EQ(r.report.skipped, 1u) << r.report.to_string();
+    ASSERT_EQ(r.report.skipped_kinds.size(), 1u);
+    EXPECT_EQ(r.report.skipped_kinds[0].call, "memcpy");
+    EXPECT_EQ(r.report.skipped_kinds[0].first, 10u);
+    EXPECT_EQ(r.report.skipped_kinds[0].reason, "an upload to a depth surface that is not D16_LOCKABLE or D32F_LOCKABLE");
+    std::vector<const cs::Statement*> locks;
+    for (const auto& st : r.stream.statements)
+        if (st.name == "LockRect") locks.push_back(&st);
+    ASSERT_EQ(locks.size(), 2u);
+    EXPECT_EQ(locks[0]->arguments.at(0).text, "ds_200");
+    EXPECT_EQ(locks[0]->arguments.back().bytes.size(), 16u);
+    ASSERT_EQ(locks[1]->arguments.size(), 4u);
+    EXPECT_EQ(locks[1]->arguments[3].bytes.size(), 8u);
+
+    Device device;
+    const ReplayResult replayed = replay(device, r.stream);
+    for (const auto& d : replayed.diagnostics) ADD_FAILURE() << d.to_string();
+    const DepthStencilSurface* ds = device.depth_stencil("ds_200");
+    ASSERT_NE(ds, nullptr);
+    EXPECT_EQ(ds->depth(0, 0), 1.0f);
+    EXPECT_EQ(ds->depth(0, 1), 1.0f);
+    EXPECT_EQ(ds->depth(1, 0), 0.25f);
+    EXPECT_EQ(ds->depth(1, 1), 0.5f);
 }
 
 // A trace cut inside its event stream: the calls before the cut are imported, and the error
