@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -543,7 +544,7 @@ TEST(ApitraceImport, PartialVolumeAndDepthUploadsAndResetOfLocksReset) {
 // what Wine cannot capture. Wine refuses to lock a D32F_LOCKABLE surface, so its uploads are
 // built here: LockRect of the whole 2x2 surface (pitch 8) and of the rectangle { 1 0 2 2 }, whose
 // copy runs from its first value to its last (12 bytes: 4, a gap of 4, 4), then an upload to a
-// D24S8 surface, which D3D9 cannot lock: skipped with the reason.
+// D24S8 surface, which D3D9 cannot lock: skipped with the reason; and a render target's upload.
 struct EventWriter {
     std::vector<std::byte> out;
     EventWriter& byte(uint8_t b) {
@@ -637,13 +638,19 @@ TEST(ApitraceImport, LockableDepthUploadsOfAHandMadeTrace) {
     create_ds(8, 75, 0x300);  // D24S8
     lock(9, 0x300, false, 0x3000);
     copy(10, 0x3000, {0.0f, 0.0f, 0.0f, 0.0f});
+    // A render target's LockRect: its bytes as they are (here the bits of 4 floats as 4 texels).
+    w.enter(11, "IDirect3DDevice9::CreateRenderTarget", {"this", "Width", "Height", "Format", "ppSurface"});
+    w.arg(0).ptr(0x100).arg(1).u(2).arg(2).u(2).arg(3).u(21).byte(0);
+    w.leave(11).arg(4).one().ptr(0x400).byte(0);
+    lock(12, 0x400, false, 0x4000);
+    copy(13, 0x4000, {1.0f, 0.25f, 0.5f, 2.0f});
 
     std::optional<Error> error;
     auto reader = Reader::open(w.out, error, true);
     ASSERT_TRUE(reader) << (error ? error->to_string() : "");
     const ImportResult r = import_d3d9(*reader);
     ASSERT_FALSE(r.error) << r.error->to_string();
-    EXPECT_EQ(r.report.calls, 11u);
+    EXPECT_EQ(r.report.calls, 14u);
     EXPECT_EQ(r.report.skipped, 1u) << r.report.to_string();
     ASSERT_EQ(r.report.skipped_kinds.size(), 1u);
     EXPECT_EQ(r.report.skipped_kinds[0].call, "memcpy");
@@ -652,8 +659,9 @@ TEST(ApitraceImport, LockableDepthUploadsOfAHandMadeTrace) {
     std::vector<const cs::Statement*> locks;
     for (const auto& st : r.stream.statements)
         if (st.name == "LockRect") locks.push_back(&st);
-    ASSERT_EQ(locks.size(), 2u);
+    ASSERT_EQ(locks.size(), 3u);
     EXPECT_EQ(locks[0]->arguments.at(0).text, "ds_200");
+    EXPECT_EQ(locks[2]->arguments.at(0).text, "rt_400");
     EXPECT_EQ(locks[0]->arguments.back().bytes.size(), 16u);
     ASSERT_EQ(locks[1]->arguments.size(), 4u);
     EXPECT_EQ(locks[1]->arguments[3].bytes.size(), 8u);
@@ -667,6 +675,14 @@ TEST(ApitraceImport, LockableDepthUploadsOfAHandMadeTrace) {
     EXPECT_EQ(ds->depth(0, 1), 1.0f);
     EXPECT_EQ(ds->depth(1, 0), 0.25f);
     EXPECT_EQ(ds->depth(1, 1), 0.5f);
+    const Surface* rt = device.surface("rt_400");
+    ASSERT_NE(rt, nullptr);
+    ASSERT_EQ(rt->bytes().size(), 16u);
+    for (size_t i = 0; i < 4; ++i) {
+        uint32_t texel = 0;
+        std::memcpy(&texel, rt->bytes().data() + 4 * i, 4);
+        EXPECT_EQ(texel, std::bit_cast<uint32_t>(std::array<float, 4>{1.0f, 0.25f, 0.5f, 2.0f}[i])) << i;
+    }
 }
 
 // A trace cut inside its event stream: the calls before the cut are imported, and the error
