@@ -164,6 +164,12 @@ private:
         if (!m) throw Skip{"member " + std::string(name) + " is missing"};
         return f32(*m, name);
     }
+    // An optional pointer argument absent: NULL (a given one is recorded as the array of the one
+    // struct it points to, which deref reads).
+    static bool null_pointer(const Call& c, std::string_view name) {
+        const Value& v = arg(c, name);
+        return v.kind == Value::Kind::Null || (v.kind == Value::Kind::Pointer && v.uint == 0);
+    }
     static uint64_t pointer(const Call& c, std::string_view name) {
         const Value& v = arg(c, name);
         if (v.kind == Value::Kind::Null) return 0;
@@ -464,7 +470,10 @@ private:
             const std::string prefix = rt ? "rt" : "ds";
             emit(std::string(m), {ident(prefix + "_" + hex(ptr)), integer(u32(c, "Width")), integer(u32(c, "Height")),
                      ident(format_name(num(c, "Format")))});
-            add(ptr, rt ? Object::Kind::RenderTarget : Object::Kind::DepthStencil, prefix);
+            Object& o = add(ptr, rt ? Object::Kind::RenderTarget : Object::Kind::DepthStencil, prefix);
+            o.format = static_cast<Format>(u32(c, "Format"));  // its uploads' texel size
+            o.width = u32(c, "Width");
+            o.height = u32(c, "Height");
             return true;
         }
         if (m == "CreateOffscreenPlainSurface") {
@@ -808,7 +817,7 @@ private:
             const Value& locked = deref(c, "pLockedRect");
             l.pitch = static_cast<uint64_t>(member(locked, "Pitch"));
             bits = static_cast<uint64_t>(member(locked, "pBits"));
-            l.whole = pointer(c, "pRect") == 0;
+            l.whole = null_pointer(c, "pRect");
             if (!l.whole) {
                 const Value& r = deref(c, "pRect");
                 l.left = member(r, "left");
@@ -819,6 +828,8 @@ private:
             if (o.kind == Object::Kind::Surface) {
                 l.level = o.level;
                 l.face = o.face;
+            } else if (o.kind == Object::Kind::RenderTarget || o.kind == Object::Kind::DepthStencil) {
+                l.level = 0;  // IDirect3DSurface9::LockRect: one level, no face
             } else {
                 l.level = u32(c, "Level");
                 if (o.kind == Object::Kind::CubeTexture) l.face = static_cast<int32_t>(u32(c, "FaceType"));
@@ -828,7 +839,7 @@ private:
             l.pitch = static_cast<uint64_t>(member(locked, "RowPitch"));
             l.slice_pitch = static_cast<uint64_t>(member(locked, "SlicePitch"));
             bits = static_cast<uint64_t>(member(locked, "pBits"));
-            l.whole = pointer(c, "pBox") == 0;
+            l.whole = null_pointer(c, "pBox");
             if (!l.whole) {
                 const Value& b = deref(c, "pBox");
                 l.left = member(b, "Left");
@@ -865,10 +876,15 @@ private:
             return true;
         }
         if (dest != start) throw Skip{"an upload to part of a texture level"};
+        // Texture levels, render targets, and depth surfaces of the two lockable formats (D3D9
+        // locks no other; the device stores their values as given).
+        const bool depth = o.kind == Object::Kind::DepthStencil;
         const bool texture = o.kind == Object::Kind::Texture || o.kind == Object::Kind::CubeTexture ||
-                             o.kind == Object::Kind::VolumeTexture ||
+                             o.kind == Object::Kind::VolumeTexture || o.kind == Object::Kind::RenderTarget || depth ||
                              (o.kind == Object::Kind::Surface && o.format != Format::Unknown);
         if (!texture) throw Skip{"an upload to a surface that is not a texture level"};
+        if (depth && o.format != Format::D16_LOCKABLE && o.format != Format::D32F_LOCKABLE)
+            throw Skip{"an upload to a depth surface that is not D16_LOCKABLE or D32F_LOCKABLE"};
         const FormatInfo* info = format_info(o.format);
         if (!info) throw Skip{"an upload in a format sm2emu does not have"};
         if (l->level >= 32) throw Skip{"level " + std::to_string(l->level) + " does not exist"};
@@ -891,19 +907,24 @@ private:
         const uint64_t row = compressed ? (w + 3) / 4 * info->bytes : w * info->bytes;
         const uint64_t rows = compressed ? (h + 3) / 4 : h;
         const bool volume = o.kind == Object::Kind::VolumeTexture;
-        const uint64_t slice_pitch = volume ? l->slice_pitch : rows * l->pitch;
-        // Pitches come from the trace: bounded by the copy before any arithmetic on them.
-        if (l->pitch > bytes.size() || slice_pitch > bytes.size() || o.width == 0 || o.height == 0)
+        // Pitches come from the trace: bounded by the copy before any arithmetic on them. Only
+        // the ones that step are: a box or rectangle one row (slice) deep copies less than a
+        // pitch (apitrace records the locked bytes from the first texel to the last).
+        const bool rows_step = rows > 1, slices_step = volume && d > 1;
+        if ((rows_step && l->pitch > bytes.size()) || (slices_step && l->slice_pitch > bytes.size()) || o.width == 0 ||
+            o.height == 0)
             throw Skip{"a pitch larger than the copy"};
-        if (l->pitch < row || (volume && d > 1 && slice_pitch < (rows - 1) * l->pitch + row))
+        const uint64_t pitch = rows_step ? l->pitch : row;
+        const uint64_t slice_pitch = slices_step ? l->slice_pitch : rows * pitch;
+        if (pitch < row || (slices_step && slice_pitch < (rows - 1) * pitch + row))
             throw Skip{"a pitch smaller than a row"};
-        const uint64_t need = (volume ? (d - 1) * slice_pitch : 0) + (rows - 1) * l->pitch + row;
+        const uint64_t need = (volume ? (d - 1) * slice_pitch : 0) + (rows - 1) * pitch + row;
         if (bytes.size() < need) throw Skip{"the copy holds " + std::to_string(bytes.size()) + " bytes, the level needs " + std::to_string(need)};
         std::vector<std::byte> tight;
         tight.reserve(static_cast<size_t>(row * rows * (volume ? d : 1)));
         for (uint64_t z = 0; z < (volume ? d : 1); ++z)
             for (uint64_t y = 0; y < rows; ++y) {
-                const auto* p = bytes.data() + z * slice_pitch + y * l->pitch;
+                const auto* p = bytes.data() + z * slice_pitch + y * pitch;
                 tight.insert(tight.end(), p, p + row);
             }
         std::vector<cs::Value> args{ident(o.name)};

@@ -661,6 +661,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
         states.emissive_source = state(148, 0);
         states.vertex_blend = state(151, 0);
         states.indexed_vertex_blend = state(167, 0) != 0;
+        states.tween_factor = std::bit_cast<float>(state(170, 0));  // D3DRS_TWEENFACTOR
         auto generated = fixed_function_vertex_program(fixed_function_, render_state_, states, viewport_,
                                                        declaration_->elements);
         if (!generated.program) return CallResult::fail(generated.error);

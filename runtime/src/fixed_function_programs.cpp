@@ -116,7 +116,9 @@ constexpr uint8_t kUsagePosition = 0, kUsageBlendWeight = 1, kUsageBlendIndices 
 
 // Vertex program input registers.
 constexpr unsigned kInPosition = 0, kInDiffuse = 1, kInSpecular = 2, kInTexCoord0 = 3, kInNormal = 11,
-                   kInBlendWeight = 12, kInBlendIndices = 13, kInPointSize = 14;
+                   kInBlendWeight = 12, kInBlendIndices = 13, kInPointSize = 14,
+                   // Tweening's second position and normal (tweening reads no blend weights).
+                   kInPosition1 = 15, kInNormal1 = kInBlendWeight;
 // Vertex program constants.
 constexpr unsigned kVcTransform = 0;       // c0..c3: (world x view x projection) transposed, or
                                            // c0: the XYZRHW screen -> clip mapping
@@ -131,6 +133,7 @@ constexpr unsigned kVcPower = 19;          // (power, 0, 0, 0)
 constexpr unsigned kVcFog = 20;            // (FOGEND, 1 / (FOGEND - FOGSTART), FOGDENSITY, log2 e)
 constexpr unsigned kVcHalf = 21;           // (0.5, 0.5, 0.5, 0.5): sphere map scale and offset
 constexpr unsigned kVcBlendIndexScale = 22;  // indexed blending: vertex index -> palette offset
+constexpr unsigned kVcTweenFactor = 22;      // tweening (no indexed blending): (TWEENFACTOR, ...)
 constexpr unsigned kVcPointScale = 23;     // (POINTSCALE_A, _B, _C, viewport height)
 constexpr unsigned kVcPointSize = 24;      // (POINTSIZE, 0, 0, 0)
 constexpr unsigned kVcLightFirst = 25;     // kLightConstants per enabled light:
@@ -218,6 +221,7 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
                                                    const VertexProcessingStates& states, const Viewport& viewport,
                                                    std::span<const VertexElement> declaration) {
     bool has_position = false, pretransformed = false, has_diffuse = false, has_specular = false, has_normal = false;
+    bool has_position1 = false, has_normal1 = false;
     std::array<bool, 8> has_texcoord{};
     std::array<unsigned, 8> texcoord_components{};
     unsigned blend_weights = 0;  // components of BLENDWEIGHT 0
@@ -230,6 +234,8 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
         if (e.usage == kUsagePosition && e.usage_index == 0) has_position = true;
         if (e.usage == kUsagePositionT && e.usage_index == 0) has_position = pretransformed = true;
         if (e.usage == kUsageNormal && e.usage_index == 0) has_normal = true;
+        if (e.usage == kUsagePosition && e.usage_index == 1) has_position1 = true;
+        if (e.usage == kUsageNormal && e.usage_index == 1) has_normal1 = true;
         if (e.usage == kUsageColor && e.usage_index == 0) has_diffuse = true;
         if (e.usage == kUsageColor && e.usage_index == 1) has_specular = true;
         if (e.usage == kUsageTexCoord && e.usage_index < 8) {
@@ -242,11 +248,14 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
     // D3DVBF_*: DISABLE 0, 1WEIGHTS..3WEIGHTS, TWEENING 255, 0WEIGHTS 256. n weights blend n + 1
     // matrices, the last weighted 1 - (the sum of the others).
     constexpr uint32_t kVbfTweening = 255, kVbf0Weights = 256;
-    if (states.vertex_blend == kVbfTweening) return refused("VERTEXBLEND TWEENING is not emulated");
-    if (states.vertex_blend > 3 && states.vertex_blend != kVbf0Weights)
+    // TWEENING (D3D9 "Vertex Tweening"): POSITION0 (1 - TWEENFACTOR) + POSITION1 TWEENFACTOR, and
+    // the normals likewise when the vertex has NORMAL1; excludes blending with weights.
+    const bool tweening = states.vertex_blend == kVbfTweening && !pretransformed;
+    if (tweening && !has_position1) return refused("VERTEXBLEND TWEENING: the declaration has no POSITION 1");
+    if (states.vertex_blend > 3 && states.vertex_blend != kVbf0Weights && states.vertex_blend != kVbfTweening)
         return refused("VERTEXBLEND " + std::to_string(states.vertex_blend) + " is not a D3DVERTEXBLENDFLAGS value");
-    const unsigned weights = states.vertex_blend == kVbf0Weights ? 0 : states.vertex_blend;
-    const bool indexed_blend = !pretransformed && states.indexed_vertex_blend;
+    const unsigned weights = states.vertex_blend == kVbf0Weights || states.vertex_blend == kVbfTweening ? 0 : states.vertex_blend;
+    const bool indexed_blend = !pretransformed && !tweening && states.indexed_vertex_blend;
     const bool blending = !pretransformed && (weights > 0 || indexed_blend);
     if (blending && weights > blend_weights)
         return refused("VERTEXBLEND " + std::to_string(weights) + " weights: the vertex has " +
@@ -309,6 +318,9 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
             b.dcl_input(RegisterType::Input, kInTexCoord0 + t, isa::DeclUsage::TexCoord, static_cast<uint8_t>(t));
     const bool needs_normal = lighting || generates_from_normal;
     if (needs_normal && has_normal) b.dcl_input(RegisterType::Input, kInNormal, isa::DeclUsage::Normal, 0);
+    const bool tween_normals = tweening && needs_normal && has_normal && has_normal1;
+    if (tweening) b.dcl_input(RegisterType::Input, kInPosition1, isa::DeclUsage::Position, 1);
+    if (tween_normals) b.dcl_input(RegisterType::Input, kInNormal1, isa::DeclUsage::Normal, 1);
     if (blending && weights > 0) b.dcl_input(RegisterType::Input, kInBlendWeight, isa::DeclUsage::BlendWeight, 0);
     if (indexed_blend) b.dcl_input(RegisterType::Input, kInBlendIndices, isa::DeclUsage::BlendIndices, 0);
     const bool point_scale = rs.point_scale_enable && !pretransformed;
@@ -335,16 +347,33 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
         b.op(Opcode::Mul, o_pos(kXYZ), {r(1), r(0, kSwizzleW)});
         b.op(Opcode::Mov, o_pos(kW), {r(0, kSwizzleW)});
     } else if (!blending) {
+        // Tweening: the blended position in r9, the normal in r10, p0 + TWEENFACTOR (p1 - p0)
+        // (both read before lighting, which reuses them).
+        auto position = in(kInPosition), normal = in(kInNormal);
+        if (tweening) {
+            constants[kVcTweenFactor] = {states.tween_factor, states.tween_factor, states.tween_factor, states.tween_factor};
+            // (One v# per instruction: POSITION1 through the register first.)
+            b.op(Opcode::Mov, rd(9), {in(kInPosition1)});
+            b.op(Opcode::Add, rd(9), {r(9), negated(in(kInPosition))});
+            b.op(Opcode::Mad, rd(9), {r(9), c(kVcTweenFactor), in(kInPosition)});
+            position = r(9);
+            if (tween_normals) {
+                b.op(Opcode::Mov, rd(10), {in(kInNormal1)});
+                b.op(Opcode::Add, rd(10), {r(10), negated(in(kInNormal))});
+                b.op(Opcode::Mad, rd(10), {r(10), c(kVcTweenFactor), in(kInNormal)});
+                normal = r(10);
+            }
+        }
         // Row vectors: p' = p (World View Projection); m4x4 takes dot products with rows c0..c3,
         // so the constants hold the product's columns.
         const auto wvp = columns_of(multiply(world_view, ff.projection));
         const auto wv = columns_of(world_view);
         std::copy(wvp.begin(), wvp.end(), constants.begin() + kVcTransform);
         std::copy(wv.begin(), wv.end(), constants.begin() + kVcWorldView);
-        b.op(Opcode::M4x4, o_pos(isa::kMaskAll), {in(kInPosition), c(kVcTransform)});
+        b.op(Opcode::M4x4, o_pos(isa::kMaskAll), {position, c(kVcTransform)});
         // Camera-space position in r0 (lighting, fog and point scale read it).
         if (lighting || vertex_fog || w_fog || generates_from_position || point_scale)
-            b.op(Opcode::M4x4, rd(0), {in(kInPosition), c(kVcWorldView)});
+            b.op(Opcode::M4x4, rd(0), {position, c(kVcWorldView)});
         // Camera-space normal in r1 (lighting and texgen read it): through the inverse transpose of
         // world x view's 3x3, normalized with NORMALIZENORMALS; (0, 0, 0) when the vertex has none.
         if (needs_normal) {
@@ -352,7 +381,7 @@ FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff,
             std::copy(rows.begin(), rows.end(), constants.begin() + kVcNormal);
             if (has_normal) {
                 // nrm may not write its own source: the transformed normal goes through r11.
-                b.op(Opcode::M3x3, rd(states.normalize_normals ? 11 : 1, kXYZ), {in(kInNormal), c(kVcNormal)});
+                b.op(Opcode::M3x3, rd(states.normalize_normals ? 11 : 1, kXYZ), {normal, c(kVcNormal)});
                 if (states.normalize_normals) b.op(Opcode::Nrm, rd(1, kXYZ), {r(11)});
             } else {
                 b.op(Opcode::Mov, rd(1), {c(kVcZero)});
@@ -699,7 +728,7 @@ bool is_bump(uint32_t op) { return op == kBumpEnvMap || op == kBumpEnvMapLuminan
 bool op_reads_texture(uint32_t op, std::array<uint32_t, 3> args) {
     if (op == kBlendTextureAlpha || op == kBlendTextureAlphaPm) return true;
     const bool arg0 = op == kMultiplyAdd || op == kLerp;
-    const bool arg2 = op != kSelectArg1;
+    const bool arg2 = op != kSelectArg1 && op != kPremodulate;
     const bool arg1 = op != kSelectArg2;
     return (arg0 && (args[0] & kTaSelectMask) == kTaTexture) || (arg1 && (args[1] & kTaSelectMask) == kTaTexture) ||
            (arg2 && (args[2] & kTaSelectMask) == kTaTexture);
@@ -708,7 +737,6 @@ bool op_reads_texture(uint32_t op, std::array<uint32_t, 3> args) {
 std::optional<std::string> check_op(unsigned stage, const char* which, uint32_t op) {
     const std::string where = "texture stage " + std::to_string(stage) + " " + which + " ";
     if (op < kDisable || op > kLerp) return where + std::to_string(op) + " is not a D3DTEXTUREOP";
-    if (op == kPremodulate) return where + "PREMODULATE is not emulated yet";
     if (is_bump(op) && std::string(which) == "ALPHAOP")
         return where + "BUMPENVMAP/BUMPENVMAPLUMINANCE is a colour operation only";
     return std::nullopt;
@@ -747,11 +775,22 @@ FixedFunctionProgram fixed_function_pixel_program(const FixedFunctionState& ff, 
     ProgramBuilder b(isa::ShaderType::Pixel);
     b.dcl_input(RegisterType::Input, 0);
     b.dcl_input(RegisterType::Input, 1);
+    // PREMODULATE (D3DTEXTUREOP: "modulate this texture stage with the next texture stage"): the
+    // stage's result is its ARG1, as SELECTARG1; the next enabled stage multiplies that result
+    // (colour for COLOROP PREMODULATE, alpha for ALPHAOP PREMODULATE) by its own TEXTURE before
+    // its operations read anything, whether or not they read TEXTURE. The last enabled stage has
+    // no next texture: it is SELECTARG1.
+    const auto premodulates = [&](unsigned s) {
+        const auto& st = ff.stages[s];
+        const bool color = st[kTssColorOp] == kPremodulate;
+        const bool alpha = st[kTssAlphaOp] == kPremodulate && st[kTssColorOp] != kDotProduct3;
+        return static_cast<uint8_t>((color ? kXYZ : 0) | (alpha ? kW : 0));
+    };
     std::array<bool, kMaxTextureStages> samples{};
     for (unsigned s = 0; s < stage_count; ++s) {
         const auto& st = ff.stages[s];
         samples[s] = textures[s] &&
-                     (is_bump(st[kTssColorOp]) || op_reads_texture(st[kTssColorOp], {st[kTssColorArg0], st[kTssColorArg1], st[kTssColorArg2]}) ||
+                     ((s > 0 && premodulates(s - 1) != 0) || is_bump(st[kTssColorOp]) || op_reads_texture(st[kTssColorOp], {st[kTssColorArg0], st[kTssColorArg1], st[kTssColorArg2]}) ||
                       (st[kTssAlphaOp] != kDisable &&
                        op_reads_texture(st[kTssAlphaOp], {st[kTssAlphaArg0], st[kTssAlphaArg1], st[kTssAlphaArg2]})));
         if (samples[s]) {
@@ -805,6 +844,12 @@ FixedFunctionProgram fixed_function_pixel_program(const FixedFunctionState& ff, 
         } else {
             b.op(Opcode::Mov, rd(kRTexture), {c(kPcOne)});
         }
+        if (const uint8_t mask = s > 0 ? premodulates(s - 1) : uint8_t{0}; mask != 0) {
+            // The previous stage's PREMODULATE: its result times this stage's TEXTURE (1 when no
+            // texture is bound, which leaves it as it is).
+            const unsigned previous = ff.stages[s - 1][kTssResultArg] == kTaTemp ? kRTemp : kRCurrent;
+            if (samples[s]) b.op(Opcode::Mul, rd(previous, mask), {r(previous), r(kRTexture)});
+        }
         const unsigned result = st[kTssResultArg] == kTaTemp ? kRTemp : kRCurrent;
 
         // One operation (colour: mask .xyz, alpha: .w) into `result`.
@@ -834,7 +879,8 @@ FixedFunctionProgram fixed_function_pixel_program(const FixedFunctionState& ff, 
             const auto tmp = rd(kRScratch, mask);
             const isa::SourceParameter t = r(kRScratch);
             switch (op) {
-            case kSelectArg1: b.op(Opcode::Mov, out, {a[1]}); break;
+            case kSelectArg1:
+            case kPremodulate: b.op(Opcode::Mov, out, {a[1]}); break;
             case kSelectArg2: b.op(Opcode::Mov, out, {a[2]}); break;
             case kModulate: b.op(Opcode::Mul, out, {a[1], a[2]}); break;
             case kModulate2x:

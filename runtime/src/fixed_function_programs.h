@@ -41,6 +41,7 @@ struct VertexProcessingStates {
     uint32_t diffuse_source = 1, specular_source = 2, ambient_source = 0, emissive_source = 0;  // D3DMCS_*
     uint32_t vertex_blend = 0;         // VERTEXBLEND
     bool indexed_vertex_blend = false; // INDEXEDVERTEXBLENDENABLE
+    float tween_factor = 0.0f;         // TWEENFACTOR
 };
 
 [[nodiscard]] FixedFunctionProgram fixed_function_vertex_program(const FixedFunctionState& ff, const RenderState& rs,

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -418,6 +420,269 @@ TEST(ApitraceImport, TextureUploadsBecomeLockRectAndLockBox) {
     EXPECT_EQ(faces, (std::vector<std::string>{"POSITIVE_X", "NEGATIVE_X", "POSITIVE_Y", "NEGATIVE_Y", "POSITIVE_Z",
                                                "NEGATIVE_Z"}));
     EXPECT_EQ(box_bytes, 8u * 8u * 4u * 4u);
+}
+
+// locks_reset (tests/data/traces/src/locks_reset.c, captured under Wine): a LockBox with a box,
+// LockRect of a D16_LOCKABLE depth surface whole and through a rectangle, and Reset to a smaller
+// back buffer. Every call is imported or accepted; the statements carry the box, the rectangle
+// and only their bytes; the replay draws Wine's two frames exactly and stores the depth values
+// Wine read back (depth.txt). Wine refuses to lock its D32F_LOCKABLE surface (D3DERR_INVALIDCALL,
+// in depth.txt), so that LockRect is a failed call: accepted, no statement.
+TEST(ApitraceImport, PartialVolumeAndDepthUploadsAndResetOfLocksReset) {
+    const ImportResult r = import_file("locks_reset");
+    ASSERT_FALSE(r.error) << r.error->to_string();
+    EXPECT_EQ(r.report.skipped, 0u) << r.report.to_string();
+    std::vector<const cs::Statement*> boxes, depth_locks;
+    const cs::Statement* reset = nullptr;
+    std::string d16;
+    for (const auto& st : r.stream.statements) {
+        if (st.name == "LockBox") boxes.push_back(&st);
+        if (st.name == "CreateDepthStencilSurface" && st.arguments.at(3).text == "D16_LOCKABLE") d16 = st.arguments[0].text;
+        if (st.name == "LockRect" && !d16.empty() && st.arguments.at(0).text == d16) depth_locks.push_back(&st);
+        if (st.name == "Reset") reset = &st;
+    }
+    // LockBox vol 0 (whole, 4x4x4 texels of 4 bytes), then LockBox vol 0 { 1 1 1 3 3 2 } with the
+    // box's 2x2x1 texels: B G R A of 0xFFFF0000 + x 0x80 + y 0x8000.
+    ASSERT_EQ(boxes.size(), 2u);
+    ASSERT_EQ(boxes[0]->arguments.size(), 3u);
+    EXPECT_EQ(boxes[0]->arguments[2].bytes.size(), 256u);
+    ASSERT_EQ(boxes[1]->arguments.size(), 4u);
+    std::vector<int64_t> box;
+    for (const auto& v : boxes[1]->arguments[2].items) box.push_back(v.integer);
+    EXPECT_EQ(box, (std::vector<int64_t>{1, 1, 1, 3, 3, 2}));
+    const std::vector<uint8_t> texels{0x00, 0x00, 0xFF, 0xFF, 0x80, 0x00, 0xFF, 0xFF,
+                                      0x00, 0x80, 0xFF, 0xFF, 0x80, 0x80, 0xFF, 0xFF};
+    ASSERT_EQ(boxes[1]->arguments[3].bytes.size(), texels.size());
+    for (size_t i = 0; i < texels.size(); ++i)
+        EXPECT_EQ(static_cast<uint8_t>(boxes[1]->arguments[3].bytes[i]), texels[i]) << i;
+    // LockRect ds 0 (whole, 4x4 16-bit values) and LockRect ds 0 { 1 2 3 4 } (2x2 values).
+    ASSERT_FALSE(d16.empty());
+    ASSERT_EQ(depth_locks.size(), 2u);
+    EXPECT_EQ(depth_locks[0]->arguments.size(), 3u);
+    EXPECT_EQ(depth_locks[0]->arguments.back().bytes.size(), 32u);
+    ASSERT_EQ(depth_locks[1]->arguments.size(), 4u);
+    std::vector<int64_t> rect;
+    for (const auto& v : depth_locks[1]->arguments[2].items) rect.push_back(v.integer);
+    EXPECT_EQ(rect, (std::vector<int64_t>{1, 2, 3, 4}));
+    EXPECT_EQ(depth_locks[1]->arguments[3].bytes.size(), 8u);
+    ASSERT_TRUE(reset);
+    EXPECT_EQ(reset->arguments.at(0).integer, 128);
+    EXPECT_EQ(reset->arguments.at(1).integer, 96);
+
+    // The depth values, replayed up to the surface's Release: Wine's read-back, row by row.
+    std::ifstream depth_txt(trace_path("locks_reset/depth.txt"));
+    std::vector<uint32_t> wine_depth;
+    std::string line;
+    for (int row = 0; row < 4 && std::getline(depth_txt, line); ++row) {
+        std::istringstream values(line);
+        for (uint32_t v; values >> v;) wine_depth.push_back(v);
+    }
+    ASSERT_EQ(wine_depth.size(), 16u);
+    EXPECT_EQ(wine_depth[2 * 4 + 1], 0xF000u);  // the rectangle's first value
+    std::getline(depth_txt, line);
+    EXPECT_NE(line.find("LockRect failed, hr=0x8876086c"), std::string::npos) << line;  // D32F_LOCKABLE
+    cs::Stream until_release;
+    for (const auto& st : r.stream.statements) {
+        if (st.name == "Release" && !st.arguments.empty() && st.arguments[0].text == d16) break;
+        until_release.statements.push_back(st);
+    }
+    {
+        DeviceOptions options;
+        options.output_dir = "frames";  // not written
+        options.write_image = [](const Surface&, const std::string&) {};
+        Device device(options);
+        const ReplayResult replayed = replay(device, until_release);
+        for (const auto& d : replayed.diagnostics) ADD_FAILURE() << d.to_string();
+        const DepthStencilSurface* ds = device.depth_stencil(d16);
+        ASSERT_NE(ds, nullptr);
+        for (uint32_t y = 0; y < 4; ++y)
+            for (uint32_t x = 0; x < 4; ++x) EXPECT_EQ(ds->stored_depth(x, y), wine_depth[y * 4 + x]) << x << "," << y;
+    }
+
+    // The frames: exact. Frame 0's 4x4 block at (8, 8) is slice 1 of the volume, one texel per
+    // pixel: the box's texels at (9..10, 9..10), the whole fill's 0x404040 around them.
+    std::vector<Surface> frames;
+    DeviceOptions options;
+    options.output_dir = "frames";  // not written: write_image keeps the surfaces
+    options.write_image = [&](const Surface& s, const std::string&) { frames.push_back(s); };
+    Device device(options);
+    const ReplayResult replayed = replay(device, r.stream);
+    for (const auto& d : replayed.diagnostics) ADD_FAILURE() << d.to_string();
+    ASSERT_EQ(frames.size(), 2u);
+    const auto channel = [](float v) { return static_cast<int>(std::lround(v * 255.0f)); };
+    for (uint32_t f = 0; f < 2; ++f) {
+        const Image expected = read_image(trace_path("locks_reset/frame_" + std::to_string(f) + ".png"));
+        ASSERT_EQ(frames[f].width(), expected.width) << f;
+        ASSERT_EQ(frames[f].height(), expected.height) << f;
+        EXPECT_EQ(expected.width, f == 0 ? 256u : 128u);
+        uint32_t differing = 0;
+        for (uint32_t y = 0; y < expected.height; ++y)
+            for (uint32_t x = 0; x < expected.width; ++x) {
+                const Float4 got = frames[f].read(x, y);
+                for (unsigned c = 0; c < 3; ++c)
+                    if (channel(got[c]) != channel(expected.rgba[(y * expected.width + x) * 4 + c])) {
+                        ++differing;
+                        break;
+                    }
+            }
+        EXPECT_EQ(differing, 0u) << "frame " << f;
+    }
+    const auto rgb = [&](uint32_t x, uint32_t y) {
+        const Float4 v = frames[0].read(x, y);
+        return static_cast<uint32_t>(channel(v[0]) << 16 | channel(v[1]) << 8 | channel(v[2]));
+    };
+    EXPECT_EQ(rgb(9, 9), 0xFF0000u);
+    EXPECT_EQ(rgb(10, 9), 0xFF0080u);
+    EXPECT_EQ(rgb(9, 10), 0xFF8000u);
+    EXPECT_EQ(rgb(10, 10), 0xFF8080u);
+    EXPECT_EQ(rgb(8, 8), 0x404040u);
+    EXPECT_EQ(rgb(11, 11), 0x404040u);
+    EXPECT_EQ(rgb(12, 12), 0x000000u);
+}
+
+// A hand-made event stream (the format before Snappy, as apitrace_reader_test.cpp writes it):
+// what Wine cannot capture. Wine refuses to lock a D32F_LOCKABLE surface, so its uploads are
+// built here: LockRect of the whole 2x2 surface (pitch 8) and of the rectangle { 1 0 2 2 }, whose
+// copy runs from its first value to its last (12 bytes: 4, a gap of 4, 4), then an upload to a
+// D24S8 surface, which D3D9 cannot lock: skipped with the reason; and a render target's upload.
+struct EventWriter {
+    std::vector<std::byte> out;
+    EventWriter& byte(uint8_t b) {
+        out.push_back(std::byte{b});
+        return *this;
+    }
+    EventWriter& uint(uint64_t v) {
+        do {
+            uint8_t b = v & 0x7F;
+            v >>= 7;
+            if (v) b |= 0x80;
+            byte(b);
+        } while (v);
+        return *this;
+    }
+    EventWriter& str(std::string_view text) {
+        uint(text.size());
+        for (char c : text) byte(static_cast<uint8_t>(c));
+        return *this;
+    }
+    EventWriter& arg(uint64_t index) { return byte(1).uint(index); }
+    EventWriter& u(uint64_t v) { return byte(4).uint(v); }
+    EventWriter& ptr(uint64_t p) { return byte(13).uint(p); }
+    EventWriter& one() { return byte(11).uint(1); }  // a pointer to one value: an array of one
+    EventWriter& enter(uint64_t id, std::string_view name, std::initializer_list<std::string_view> args) {
+        byte(0).uint(0).uint(id).str(name).uint(args.size());
+        for (auto a : args) str(a);
+        return *this;
+    }
+    EventWriter& enter_again(uint64_t id) { return byte(0).uint(0).uint(id); }
+    EventWriter& leave(uint64_t call) { return byte(1).uint(call); }
+    EventWriter& floats(std::initializer_list<float> values) {
+        byte(8).uint(values.size() * 4);
+        for (float f : values) {
+            const auto bits = std::bit_cast<uint32_t>(f);
+            for (int i = 0; i < 4; ++i) byte(static_cast<uint8_t>(bits >> (8 * i)));
+        }
+        return *this;
+    }
+};
+
+TEST(ApitraceImport, LockableDepthUploadsOfAHandMadeTrace) {
+    EventWriter w;
+    w.uint(6).uint(6).str("");
+    w.enter(0, "IDirect3D9::CreateDevice", {"this", "pPresentationParameters", "ppReturnedDeviceInterface"});
+    w.arg(0).ptr(0x10).arg(1).one().byte(12).uint(0).str("D3DPRESENT_PARAMETERS").uint(5).str("BackBufferWidth");
+    w.str("BackBufferHeight").str("BackBufferFormat").str("EnableAutoDepthStencil").str("AutoDepthStencilFormat");
+    w.u(2).u(2).u(21).u(0).u(0).byte(0);  // 2x2 A8R8G8B8, no auto depth
+    w.leave(0).arg(2).one().ptr(0x100).byte(0);
+    const auto create_ds = [&](uint64_t call, uint64_t format, uint64_t surface) {
+        if (call == 1) w.enter(1, "IDirect3DDevice9::CreateDepthStencilSurface", {"this", "Width", "Height", "Format", "ppSurface"});
+        else w.enter_again(1);
+        w.arg(0).ptr(0x100).arg(1).u(2).arg(2).u(2).arg(3).u(format).byte(0);
+        w.leave(call).arg(4).one().ptr(surface).byte(0);
+    };
+    const auto lock = [&](uint64_t call, uint64_t surface, bool rect, uint64_t bits) {
+        if (call == 2) w.enter(2, "IDirect3DSurface9::LockRect", {"this", "pLockedRect", "pRect", "Flags"});
+        else w.enter_again(2);
+        w.arg(0).ptr(surface).arg(2);
+        if (rect) {
+            w.one().byte(12).uint(2);
+            if (call == 5) w.str("RECT").uint(4).str("left").str("top").str("right").str("bottom");
+            w.u(1).u(0).u(2).u(2);
+        } else {
+            w.byte(0);  // NULL: the whole surface
+        }
+        w.arg(3).u(0).byte(0);
+        w.leave(call).arg(1).one().byte(12).uint(1);
+        if (call == 2) w.str("D3DLOCKED_RECT").uint(2).str("Pitch").str("pBits");
+        w.u(8).ptr(bits).byte(0);
+    };
+    const auto copy = [&](uint64_t call, uint64_t dest, std::initializer_list<float> values) {
+        if (call == 3) w.enter(3, "memcpy", {"dest", "src", "n"});
+        else w.enter_again(3);
+        w.arg(0).ptr(dest).arg(1).floats(values).arg(2).u(values.size() * 4).byte(0);
+        w.leave(call).byte(0);
+    };
+    const auto unlock = [&](uint64_t call, uint64_t surface) {
+        if (call == 4) w.enter(4, "IDirect3DSurface9::UnlockRect", {"this"});
+        else w.enter_again(4);
+        w.arg(0).ptr(surface).byte(0);
+        w.leave(call).byte(0);
+    };
+    create_ds(1, 82, 0x200);  // D32F_LOCKABLE
+    lock(2, 0x200, false, 0x1000);
+    copy(3, 0x1000, {1.0f, 1.0f, 1.0f, 1.0f});
+    unlock(4, 0x200);
+    lock(5, 0x200, true, 0x2004);
+    copy(6, 0x2004, {0.25f, -7.0f, 0.5f});  // -7: the row's pad, not the rectangle's
+    unlock(7, 0x200);
+    create_ds(8, 75, 0x300);  // D24S8
+    lock(9, 0x300, false, 0x3000);
+    copy(10, 0x3000, {0.0f, 0.0f, 0.0f, 0.0f});
+    // A render target's LockRect: its bytes as they are (here the bits of 4 floats as 4 texels).
+    w.enter(11, "IDirect3DDevice9::CreateRenderTarget", {"this", "Width", "Height", "Format", "ppSurface"});
+    w.arg(0).ptr(0x100).arg(1).u(2).arg(2).u(2).arg(3).u(21).byte(0);
+    w.leave(11).arg(4).one().ptr(0x400).byte(0);
+    lock(12, 0x400, false, 0x4000);
+    copy(13, 0x4000, {1.0f, 0.25f, 0.5f, 2.0f});
+
+    std::optional<Error> error;
+    auto reader = Reader::open(w.out, error, true);
+    ASSERT_TRUE(reader) << (error ? error->to_string() : "");
+    const ImportResult r = import_d3d9(*reader);
+    ASSERT_FALSE(r.error) << r.error->to_string();
+    EXPECT_EQ(r.report.calls, 14u);
+    EXPECT_EQ(r.report.skipped, 1u) << r.report.to_string();
+    ASSERT_EQ(r.report.skipped_kinds.size(), 1u);
+    EXPECT_EQ(r.report.skipped_kinds[0].call, "memcpy");
+    EXPECT_EQ(r.report.skipped_kinds[0].first, 10u);
+    EXPECT_EQ(r.report.skipped_kinds[0].reason, "an upload to a depth surface that is not D16_LOCKABLE or D32F_LOCKABLE");
+    std::vector<const cs::Statement*> locks;
+    for (const auto& st : r.stream.statements)
+        if (st.name == "LockRect") locks.push_back(&st);
+    ASSERT_EQ(locks.size(), 3u);
+    EXPECT_EQ(locks[0]->arguments.at(0).text, "ds_200");
+    EXPECT_EQ(locks[2]->arguments.at(0).text, "rt_400");
+    EXPECT_EQ(locks[0]->arguments.back().bytes.size(), 16u);
+    ASSERT_EQ(locks[1]->arguments.size(), 4u);
+    EXPECT_EQ(locks[1]->arguments[3].bytes.size(), 8u);
+
+    Device device;
+    const ReplayResult replayed = replay(device, r.stream);
+    for (const auto& d : replayed.diagnostics) ADD_FAILURE() << d.to_string();
+    const DepthStencilSurface* ds = device.depth_stencil("ds_200");
+    ASSERT_NE(ds, nullptr);
+    EXPECT_EQ(ds->depth(0, 0), 1.0f);
+    EXPECT_EQ(ds->depth(0, 1), 1.0f);
+    EXPECT_EQ(ds->depth(1, 0), 0.25f);
+    EXPECT_EQ(ds->depth(1, 1), 0.5f);
+    const Surface* rt = device.surface("rt_400");
+    ASSERT_NE(rt, nullptr);
+    ASSERT_EQ(rt->bytes().size(), 16u);
+    for (size_t i = 0; i < 4; ++i) {
+        uint32_t texel = 0;
+        std::memcpy(&texel, rt->bytes().data() + 4 * i, 4);
+        EXPECT_EQ(texel, std::bit_cast<uint32_t>(std::array<float, 4>{1.0f, 0.25f, 0.5f, 2.0f}[i])) << i;
+    }
 }
 
 // A trace cut inside its event stream: the calls before the cut are imported, and the error

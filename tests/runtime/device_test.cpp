@@ -286,13 +286,13 @@ TEST_F(DeviceTest, RefusedDrawsChangeNothing) {
     EXPECT_NE(past.error.find("DrawPrimitive"), std::string::npos);
     EXPECT_FALSE(device->draw_primitive(99, 0, 1));                              // bad type
     EXPECT_TRUE(draw(kTriangleList, 0, tri));                                    // zero primitives: a no-op (D3D_OK, as Wine)
-    // No vertex shader: the fixed-function program, refused for a state it does not emulate
-    // (D3DVBF_TWEENING vertex blending).
+    // No vertex shader: the fixed-function program, refused for a state the vertex cannot meet
+    // (D3DVBF_TWEENING vertex blending without a second position).
     ASSERT_TRUE(device->set_vertex_shader(""));
     ASSERT_TRUE(device->set_render_state(rs(RenderStateType::VertexBlend), 255));
     const auto tweening = draw(kTriangleList, 1, tri);
     EXPECT_FALSE(tweening);
-    EXPECT_NE(tweening.error.find("TWEENING is not emulated"), std::string::npos) << tweening.error;
+    EXPECT_NE(tweening.error.find("TWEENING: the declaration has no POSITION 1"), std::string::npos) << tweening.error;
     ASSERT_TRUE(device->set_render_state(rs(RenderStateType::VertexBlend), 0));
     ASSERT_TRUE(device->set_vertex_shader("vs"));
     ASSERT_TRUE(device->end_scene());

@@ -489,6 +489,57 @@ TEST(FixedFunctionDraw, BlendedNormalsUseEachMatrixsInverseTranspose) {
     EXPECT_EQ(lit("TRUE"), 0xFFFFFFFFu);
 }
 
+TEST(FixedFunctionDraw, TweeningBlendsTheTwoPositions) {
+    // VERTEXBLEND TWEENING (D3D9 "Vertex Tweening"): POSITION0 (1 - TWEENFACTOR) + POSITION1
+    // TWEENFACTOR. POSITION0 spans x in [-1, 0], POSITION1 the same quad moved by 2, [1, 2];
+    // TWEENFACTOR 0.25: x + 0.5, [-0.5, 0.5], columns 1 and 2 (centres -0.75, -0.25, 0.25, 0.75).
+    // 0: POSITION0, columns 0 and 1; 1: POSITION1, off screen. The factor the other way round
+    // (0.75 to POSITION1) would give [0.5, 1.5], column 3.
+    Words w;
+    for (auto [x, y] : {std::pair{-1.0f, 1.0f}, {0.0f, 1.0f}, {-1.0f, -1.0f}, {0.0f, -1.0f}})
+        w.f({x, y, 0.5f, x + 2.0f, y, 0.5f});
+    const auto tweened = [&](const char* factor) {
+        const Outcome o = replay_text(
+            std::string("CreateVertexDeclaration tween { 0 0 FLOAT3 DEFAULT POSITION 0 } { 0 12 FLOAT3 DEFAULT POSITION 1 }\n"
+                        "SetVertexDeclaration tween\nSetRenderState LIGHTING FALSE\n"
+                        "SetRenderState VERTEXBLEND 255\nSetRenderState TWEENFACTOR ") +
+            factor + "\nDrawPrimitiveUP TRIANGLESTRIP 2 24 " + w.blob() + "\n");
+        expect_no_diagnostics(o.result);
+        return covered_columns(o);
+    };
+    EXPECT_EQ(tweened("0.25"), "0110");
+    EXPECT_EQ(tweened("0"), "1100");
+    EXPECT_EQ(tweened("1"), "0000");
+}
+
+TEST(FixedFunctionDraw, TweeningBlendsTheTwoNormals) {
+    // Directional light along +z (L = (0, 0, -1)), white, material diffuse 1. NORMAL0 (0, 0, -1),
+    // NORMAL1 (1, 0, 0), TWEENFACTOR 0.25: N = (0.25, 0, -0.75), N.L = 0.75 -> 191.25 -> 0xBF
+    // (the factor the other way round: 0.25 -> 0x40). NORMALIZENORMALS: 0.75 / sqrt(0.625) =
+    // 0.94868 -> 241.91 -> 0xF2. Without NORMAL1 in the declaration NORMAL0 is used as it is: 0xFF.
+    const std::string light =
+        "SetMaterial { 1 1 1 1 } { 0 0 0 0 } { 0 0 0 0 } { 0 0 0 0 } 0\n"
+        "SetLight 0 DIRECTIONAL { 1 1 1 1 } { 0 0 0 0 } { 0 0 0 0 } { 0 0 0 } { 0 0 1 } 0 0 0 0 0 0 0\n"
+        "LightEnable 0 TRUE\nSetRenderState VERTEXBLEND 255\nSetRenderState TWEENFACTOR 0.25\n"
+        "CreateVertexDeclaration both { 0 0 FLOAT3 DEFAULT POSITION 0 } { 0 12 FLOAT3 DEFAULT NORMAL 0 }"
+        " { 0 24 FLOAT3 DEFAULT POSITION 1 } { 0 36 FLOAT3 DEFAULT NORMAL 1 }\n"
+        "CreateVertexDeclaration one { 0 0 FLOAT3 DEFAULT POSITION 0 } { 0 12 FLOAT3 DEFAULT NORMAL 0 }"
+        " { 0 24 FLOAT3 DEFAULT POSITION 1 }\n";
+    Words w;
+    for (auto [x, y] : {std::pair{-1.0f, 1.0f}, {1.0f, 1.0f}, {-1.0f, -1.0f}, {1.0f, -1.0f}})
+        w.f({x, y, 0.25f, 0.0f, 0.0f, -1.0f, x, y, 0.25f, 1.0f, 0.0f, 0.0f});
+    const auto lit = [&](const char* declaration, const char* normalize) {
+        const Outcome o = replay_text(light + "SetVertexDeclaration " + declaration +
+                                      "\nSetRenderState NORMALIZENORMALS " + normalize +
+                                      "\nDrawPrimitiveUP TRIANGLESTRIP 2 48 " + w.blob() + "\n");
+        expect_no_diagnostics(o.result);
+        return pixel(o, 1, 1);
+    };
+    EXPECT_EQ(lit("both", "FALSE"), 0xFFBFBFBFu);
+    EXPECT_EQ(lit("both", "TRUE"), 0xFFF2F2F2u);
+    EXPECT_EQ(lit("one", "FALSE"), 0xFFFFFFFFu);
+}
+
 // The 4x4 target as 16 characters, '1' where a pixel is not the clear colour.
 std::string coverage(const Outcome& o) {
     std::string mask;
@@ -577,6 +628,41 @@ TEST(FixedFunctionDraw, BumpEnvironmentMapPerturbsTheNextStage) {
     EXPECT_EQ(bumped("BUMPENVMAP"), 0xFF0000FFu);
     EXPECT_EQ(bumped("BUMPENVMAPLUMINANCE"), 0xFF000080u);
     EXPECT_EQ(bumped("SELECTARG2"), 0xFFFF0000u);  // stage 0 not a bump stage: u = 0.1, red
+}
+
+TEST(FixedFunctionDraw, PremodulateModulatesWithTheNextStagesTexture) {
+    // Stage 0 PREMODULATE (colour and alpha) of DIFFUSE (0x80, 0x40, 0xFF), alpha 0x80: its result
+    // is ARG1, which stage 1 multiplies by its texture, (0xFF, 0x80, 0x40), alpha 0x80, before its
+    // operations (SELECTARG2 CURRENT, which does not read TEXTURE itself): R 128 * 255/255 = 128
+    // (0x80); G 64 * 128/255 = 32.125 -> 0x20; B 255 * 64/255 = 64 (0x40); A 128 * 128/255 =
+    // 64.25 -> 0x40. Stage 1 disabled (no next stage), no texture on stage 1 (TEXTURE is 1) or
+    // SELECTARG1 instead: the diffuse colour. ALPHAOP SELECTARG1: the alpha stays 0x80.
+    Words w;
+    for (auto [x, y] : {std::pair{-0.5f, -0.5f}, {3.5f, -0.5f}, {-0.5f, 3.5f}, {3.5f, 3.5f}})
+        w.f({x, y, 0.5f, 1.0f}).color(0x808040FFu).f({0.5f, 0.5f});
+    const auto drawn = [&](const std::string& state) {
+        const Outcome o = replay_text(
+            "CreateTexture tex 1 1 1 A8R8G8B8\nLockRect tex 0 u8[ 64 128 255 128 ]\n"
+            "SetTextureStageState 0 COLOROP PREMODULATE\nSetTextureStageState 0 COLORARG1 DIFFUSE\n"
+            "SetTextureStageState 0 ALPHAOP PREMODULATE\nSetTextureStageState 0 ALPHAARG1 DIFFUSE\n"
+            "SetTextureStageState 1 COLOROP SELECTARG2\nSetTextureStageState 1 COLORARG2 CURRENT\n"
+            "SetTextureStageState 1 ALPHAOP SELECTARG2\nSetTextureStageState 1 ALPHAARG2 CURRENT\n"
+            "SetTextureStageState 1 TEXCOORDINDEX 0\n" + state +
+            "SetFVF { XYZRHW DIFFUSE TEX1 }\nDrawPrimitiveUP TRIANGLESTRIP 2 28 " + w.blob() + "\n");
+        expect_no_diagnostics(o.result);
+        return pixel(o, 2, 1);
+    };
+    EXPECT_EQ(drawn("SetTexture 1 tex\n"), 0x40802040u);
+    EXPECT_EQ(drawn("SetTexture 1 tex\nSetTextureStageState 0 ALPHAOP SELECTARG1\n"), 0x80802040u);
+    EXPECT_EQ(drawn("SetTexture 1 tex\nSetTextureStageState 1 COLOROP DISABLE\n"), 0x808040FFu);
+    EXPECT_EQ(drawn(""), 0x808040FFu);
+    EXPECT_EQ(drawn("SetTexture 1 tex\nSetTextureStageState 0 COLOROP SELECTARG1\n"
+                    "SetTextureStageState 0 ALPHAOP SELECTARG1\n"),
+              0x808040FFu);
+    // RESULTARG TEMP: the stage's result, TEMP, is what stage 1's texture multiplies.
+    EXPECT_EQ(drawn("SetTexture 1 tex\nSetTextureStageState 0 RESULTARG TEMP\n"
+                    "SetTextureStageState 1 COLORARG2 TEMP\nSetTextureStageState 1 ALPHAARG2 TEMP\n"),
+              0x40802040u);
 }
 
 // Stage 0 = OP(arg1 TFACTOR, arg2 DIFFUSE) over the whole target; the colour at pixel (0, 0).
@@ -698,7 +784,7 @@ TEST(FixedFunctionDraw, BadStageValuesAreRefused) {
         return generated.error;
     };
     EXPECT_EQ(refusal(0, kTssColorOp, 99), "texture stage 0 COLOROP 99 is not a D3DTEXTUREOP");
-    EXPECT_EQ(refusal(1, kTssAlphaOp, 17), "texture stage 1 ALPHAOP PREMODULATE is not emulated yet");
+    EXPECT_EQ(refusal(1, kTssAlphaOp, 27), "texture stage 1 ALPHAOP 27 is not a D3DTEXTUREOP");
     EXPECT_EQ(refusal(1, kTssAlphaOp, 22), "texture stage 1 ALPHAOP BUMPENVMAP/BUMPENVMAPLUMINANCE is a colour operation only");
     EXPECT_EQ(refusal(0, kTssColorArg1, 7), "texture stage 0: 7 is not a D3DTA argument");
     EXPECT_EQ(refusal(0, kTssResultArg, kTaTexture), "texture stage 0: RESULTARG must be CURRENT or TEMP");

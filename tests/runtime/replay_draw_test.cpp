@@ -113,7 +113,7 @@ TEST(ReplayDraw, RefusedDrawsKeepTheirLineAndTheSurface) {
         "DrawPrimitive TRIANGLELIST 0 2\n"                 // 22: 6 vertices, the buffer holds 3
         "SetVertexShader NULL\n"                           // 23
         "SetRenderState VERTEXBLEND 255\n"                                // 24: TWEENING
-        "DrawPrimitiveUP TRIANGLESTRIP 2 12 f32[ " + kQuadStrip + " ]\n"  // 25: fixed function, tweening refused
+        "DrawPrimitiveUP TRIANGLESTRIP 2 12 f32[ " + kQuadStrip + " ]\n"  // 25: tweening without POSITION1, refused
         "EndScene\n"
         "DrawPrimitiveUP TRIANGLESTRIP 2 12 f32[ " + kQuadStrip + " ]\n");  // 27: outside the scene
     ASSERT_EQ(o.result.diagnostics.size(), 3u);

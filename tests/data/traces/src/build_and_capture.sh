@@ -7,7 +7,8 @@
 #
 #   APITRACE_D3D9_DLL  the apitrace d3d9 wrapper (a 64-bit d3d9.dll built for x86_64-w64-mingw32)
 #   OUTDIR             where the results go (default: the folder above this script)
-#   PROGRAM            any of ff_texops ff_lighting ff_fog_texgen ff_sprites_blend (default: all four)
+#   PROGRAM            any of ff_texops ff_lighting ff_fog_texgen ff_sprites_blend locks_reset
+#                      (default: all five)
 #
 # Environment (optional):
 #   BUILD_DIR    build + run folder           (default /tmp/d3d9-traces-build)
@@ -21,12 +22,12 @@
 # Mesa llvmpipe (software OpenGL used by Wine's wined3d); optional: apitrace (Linux CLI).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-if [ $# -lt 1 ]; then sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 2; fi
+if [ $# -lt 1 ]; then sed -n '2,23p' "$0" | sed 's/^# \{0,1\}//'; exit 2; fi
 dll=$(realpath "$1"); shift
 [ -f "$dll" ] || { echo "no such file: $dll" >&2; exit 2; }
 out=${1:-$(dirname "$here")}; [ $# -gt 0 ] && shift
 mkdir -p "$out"; out=$(cd "$out" && pwd)
-programs=("$@"); [ ${#programs[@]} -gt 0 ] || programs=(ff_texops ff_lighting ff_fog_texgen ff_sprites_blend)
+programs=("$@"); [ ${#programs[@]} -gt 0 ] || programs=(ff_texops ff_lighting ff_fog_texgen ff_sprites_blend locks_reset)
 
 build=${BUILD_DIR:-/tmp/d3d9-traces-build}
 cc=${MINGW_CC:-x86_64-w64-mingw32-gcc}
@@ -88,6 +89,7 @@ for p in "${programs[@]}"; do
         python3 "$here/bmp2png.py" "$f" "$out/$p/$(basename "${f%.bmp}").png"
     done
     cp "$run/$p.trace" "$out/$p.trace"
+    [ -f "$run/depth.txt" ] && cp "$run/depth.txt" "$out/$p/depth.txt"
     if command -v apitrace >/dev/null 2>&1; then
         apitrace dump -v --color=never "$out/$p.trace" >"$out/$p.dump.txt"
     fi
