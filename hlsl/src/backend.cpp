@@ -42,7 +42,7 @@ constexpr uint32_t Undef = 1, Name = 5, MemberName = 6, String = 7, Line = 8, Ex
                    FNegate = 127, FAdd = 129, FSub = 131, FMul = 133, FDiv = 136, VectorTimesScalar = 142,
                    VectorTimesMatrix = 144, MatrixTimesVector = 145, Dot = 148, LogicalNot = 168,
                    Select = 169, FOrdEqual = 180, FUnordGreaterThanEqual = 191, Label = 248, Return = 253, SelectionMerge = 247, LoopMerge = 246, Branch = 249,
-                   BranchConditional = 250, Kill = 252, Phi = 245, IAdd = 128, IEqual = 170, INotEqual = 171,
+                   BranchConditional = 250, Kill = 252, Any = 154, Phi = 245, IAdd = 128, IEqual = 170, INotEqual = 171,
                    SGreaterThan = 173, SLessThan = 177,
                    NoLine = 317, DecorateString = 5632;
 }  // namespace op
@@ -95,6 +95,7 @@ struct Value {
     uint32_t compare = 0, lhs = 0, rhs = 0;
     // Pointer: the variable, its storage class and the constant register reached so far.
     uint32_t variable = 0, pointee = 0, storage = 0;
+    bool any = false;        // Condition: any() of a vector comparison (clip's test; only a kill reads it)
     bool row_major = false;  // Pointer into a RowMajor-decorated member
     int component = -1;      // Pointer to one component of a vector
 };
@@ -843,12 +844,14 @@ private:
                 phis_of_[label].push_back(p);
             }
         if (pixel_) {  // ps_2_0 has no flow control: the first branch the optimizer left is the error
-            for (size_t i = 0; i < body_.size(); ++i)
+            for (size_t i = 0; i < body_.size(); ++i) {
+                if (body_[i].opcode == op::SelectionMerge && kill_branch(i)) continue;
                 if (body_[i].opcode == op::SelectionMerge || body_[i].opcode == op::LoopMerge) {
                     position_ = i;
                     location_ = body_[i].location.line ? body_[i].location : entry_location_;
                     no_flow_control();
                 }
+            }
             return;
         }
 
@@ -880,6 +883,22 @@ private:
                                  "vs_2_0) and cannot also be read as a value here");
                 }
         }
+    }
+
+    // ps_2_0: `if (c) discard;` and clip(x) reach the back end as a selection whose one arm is a
+    // block holding only OpKill. It becomes texkill of a value negative exactly when the pixel dies.
+    bool kill_branch(size_t i) {
+        if (i + 1 >= body_.size() || body_[i + 1].opcode != op::BranchConditional) return false;
+        const uint32_t merge = body_[i].words.at(0);
+        const auto& w = body_[i + 1].words;
+        const uint32_t kill = w.at(1) == merge ? w.at(2) : w.at(2) == merge ? w.at(1) : 0;
+        if (!kill || kill == merge) return false;
+        auto at = label_position_.find(kill);
+        if (at == label_position_.end() || at->second + 1 >= body_.size() || body_[at->second + 1].opcode != op::Kill)
+            return false;
+        kill_branches_[i + 1] = kill == w.at(2);  // kill on the false arm: the condition negated
+        skip_.insert({at->second, at->second + 1});
+        return true;
     }
 
     void analyze_loop(size_t i, std::set<size_t>& consumers) {
@@ -1670,6 +1689,7 @@ private:
         case op::LogicalNot: {
             Value c = value(w.at(2));
             if (c.kind != Value::Kind::Condition) throw CompileError("boolean logic beyond one comparison is not supported");
+            if (c.any) throw CompileError("!any() is not supported: texkill kills when any component is negative");
             c.negate = !c.negate;
             for (uint32_t operand : {c.lhs, c.rhs})  // the comparison's operands live as long as the negation
                 if (operand != 0) extend_last_use(operand, last_use_[w.at(1)]);
@@ -1729,13 +1749,36 @@ private:
         case op::SelectionMerge: return;  // the branch that follows opens the if
         case op::LoopMerge: open_loop(); return;
         case op::Branch: branch_to(w.at(0)); return;
-        case op::BranchConditional: open_if(); return;
+        case op::BranchConditional: {
+            auto kill = kill_branches_.find(position_);
+            if (kill != kill_branches_.end()) {
+                kill_if(value(w.at(0)), kill->second);
+                return;
+            }
+            open_if();
+            return;
+        }
+        case op::Any: {
+            Value c = value(w.at(2));
+            if (c.kind != Value::Kind::Condition || c.lhs == 0) throw CompileError("any() of something other than one comparison is not supported");
+            c.any = true;
+            for (uint32_t operand : {c.lhs, c.rhs}) extend_last_use(operand, last_use_[w.at(1)]);
+            define(w.at(1), c);
+            return;
+        }
         case op::INotEqual:
         case op::IEqual:
             throw CompileError(pixel_ ? "a uniform bool or int read as a value (an integer comparison) is not supported in ps_2_0"
                                       : "a condition on uniform bools other than one bool alone (`b`, `!b`; not `a && b`), or a "
                                         "uniform bool or int read as a value, is not supported: vs_2_0's `if b#` tests one bool");
         case op::Kill:
+            if (pixel_) {  // a discard the optimizer left unconditional: every pixel dies
+                kill_always();
+                // The outputs' stores followed the discard and are gone; ps_2_0 must still write oC0.
+                if (std::none_of(code_.begin(), code_.end(), [](const std::string& l) { return l.rfind("mov oC0", 0) == 0; }))
+                    emit("mov", "oC0", 0xF, {literal_vector({0, 0, 0, 0}, 4)});
+                return;
+            }
             throw CompileError("flow control that depends on run-time values (an if, loop or discard the optimizer "
                                "could not flatten) is not supported by this compiler for " + profile());
         default: break;
@@ -1909,8 +1952,64 @@ private:
         return d;
     }
 
+    void kill_always() {
+        Value t = new_temp(4);
+        emit("mov", temp_name(t), 0xF, {literal(-1.0f)});
+        line("texkill " + temp_name(t));
+    }
+
+    // texkill where the comparison `c` (negated once more by `negate`) holds: a temp whose four
+    // components (texkill tests all four) hold a - b, or cmp's -1/1 of it, so that one is negative
+    // exactly then; components past the comparison's size hold 0 or 1, which never kill.
+    void kill_if(Value c, bool negate) {
+        if (c.kind != Value::Kind::Condition) throw CompileError("a discard condition SM2 cannot evaluate without branches");
+        c.negate = c.negate != negate;
+        if (c.lhs == 0) {  // a constant condition the optimizer left
+            if ((c.compare != 0) != c.negate) kill_always();
+            return;
+        }
+        if (c.any && c.negate)
+            throw CompileError("discard when all components of a comparison hold (!any, all) is not supported: "
+                               "texkill kills when any component is negative (clip(x), `if (any(x < y)) discard;`)");
+        const Value a = as_register(c.lhs), b = as_register(c.rhs);
+        // As in select(): kill when first - second >= 0, or (when_negative) when it is < 0.
+        const uint32_t base = c.compare - (c.compare - op::FOrdEqual) % 2;
+        bool swap_operands = false, when_negative = c.negate, equality = false;
+        switch (base) {
+        case op::FOrdEqual: equality = true; break;
+        case op::FOrdEqual + 2: equality = true; when_negative = !when_negative; break;  // !=
+        case op::FOrdEqual + 4: when_negative = !when_negative; break;  // a < b: a - b < 0
+        case op::FOrdEqual + 6: swap_operands = true; when_negative = !when_negative; break;  // a > b: b - a < 0
+        case op::FOrdEqual + 8: swap_operands = true; break;  // a <= b: b - a >= 0
+        default: break;  // a >= b
+        }
+        const Value& first = swap_operands ? b : a;
+        Value second = swap_operands ? a : b;
+        second.negate = !second.negate;
+        const uint32_t n = std::max(a.count, b.count);
+        const uint8_t mask = n == 1 ? 0xF : mask_of(n);  // a scalar is replicated to all four
+        Value t = new_temp(4);
+        if (is_literal(c.rhs, 0.0f) || is_literal(c.lhs, 0.0f)) {  // x against 0: x itself, or -x
+            const bool zero_second = is_literal(swap_operands ? c.lhs : c.rhs, 0.0f);
+            emit("mov", temp_name(t), mask, {zero_second ? first : second});
+        } else {
+            emit("add", temp_name(t), mask, {first, second});
+        }
+        Value diff = t;
+        diff.count = n == 1 ? 4 : n;
+        if (equality) {  // -(a-b)^2 >= 0 only when a == b
+            Value neg = diff;
+            neg.negate = true;
+            emit("mul", temp_name(t), mask, {neg, diff});
+        }
+        if (!when_negative) emit("cmp", temp_name(t), mask, {diff, literal(-1.0f), literal(1.0f)});
+        if (mask != 0xF) emit("mov", temp_name(t), static_cast<uint8_t>(0xF & ~mask), {literal(when_negative ? 0.0f : 1.0f)});
+        line("texkill " + temp_name(t));
+    }
+
     // select(condition, x, y) with cmp (ps: src0 >= 0 ? src1 : src2) or sge/slt and lrp (vs).
     Value select(const Value& c, const Value& x, const Value& y, uint32_t count) {
+        if (c.any) throw CompileError("any() is supported only as a discard's condition (clip)");
         Value d = new_temp(count);
         const uint8_t mask = mask_of(count);
         if (c.lhs == 0) {  // a constant condition the optimizer left
@@ -2125,6 +2224,7 @@ private:
         auto c = constants_.find(id);
         if (c == constants_.end()) return false;
         const SpirvInstruction* s = &c->second;
+        if (s->opcode == op::ConstantNull) return expected == 0.0f;
         if (s->opcode == op::ConstantComposite && s->words.size() > 2) {
             for (size_t k = 2; k < s->words.size(); ++k)
                 if (!is_literal(s->words[k], expected)) return false;
@@ -2230,6 +2330,7 @@ private:
     std::unordered_map<uint32_t, Value> phi_registers_;
     std::set<size_t> skip_;  // positions not translated (conditions and counters b#/i# replace)
     std::map<size_t, FlowBool> bool_conditions_;  // branch or select position -> its uniform bool
+    std::map<size_t, bool> kill_branches_;          // ps: branch to a lone OpKill -> kill on its false arm
     std::map<uint32_t, Loop> loops_;              // header label -> loop
     std::set<std::pair<uint32_t, uint32_t>> flow_bool_members_, flow_int_members_;
     std::map<std::pair<uint32_t, uint32_t>, std::string> flow_registers_;  // member -> "b0", "i0"
