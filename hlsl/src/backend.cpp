@@ -712,6 +712,7 @@ private:
                 }
             }
             if (!skip_.count(i)) translate(ins);
+            if (has_result_id(ins.opcode) && ins.words.size() >= 2) code_after_[ins.words[1]] = code_.size();
             std::vector<uint32_t> used = operand_ids(ins);
             used.insert(used.end(), incoming_uses_[i].begin(), incoming_uses_[i].end());
             release_after(i, used);
@@ -1660,6 +1661,10 @@ private:
             Value r = new_temp(b.count);
             for (uint32_t c = 0; c < b.count; ++c)
                 emit("rcp", temp_name(r), static_cast<uint8_t>(1 << c), {component_view(b, c)});
+            if (is_literal(w.at(2), 1.0f) && b.count == result_count()) {  // 1 / x: the rcp alone (1 * y is y)
+                define(w.at(1), r);
+                return;
+            }
             binary("mul", w.at(1), result_count(), a, r);
             return;
         }
@@ -1952,6 +1957,39 @@ private:
         return d;
     }
 
+    // ps_2_0 saturate(x) where x is used by it alone and was just written by one instruction that
+    // takes _sat (`dp3 r0.x, ...` then saturate): that instruction gets `_sat` (dp3_sat, the
+    // same value as dp3 then mov_sat) and the result is x's register.
+    bool fold_saturate(uint32_t result, uint32_t x) {
+        auto after = code_after_.find(x);
+        auto u = uses_.find(x);
+        if (after == code_after_.end() || after->second != code_.size() || code_.empty() || u == uses_.end() ||
+            u->second.size() != 1)
+            return false;
+        const Value& v = value(x);
+        if (v.kind != Value::Kind::Register || v.file != 'r' || v.negate || temp_holders_[v.index] != 1) return false;
+        std::string& last = code_.back();
+        const size_t space = last.find(' ');
+        if (space == std::string::npos) return false;
+        const std::string mnemonic = last.substr(0, space);
+        static const std::set<std::string> kSat = {"mov", "add", "mul", "mad", "dp3", "dp4", "min", "max", "cmp", "lrp",
+                                                   "rcp", "rsq", "exp", "log", "pow", "nrm", "abs", "crs", "dp2add"};
+        if (!kSat.count(mnemonic)) return false;
+        // The destination: this register, a mask holding every component x reads.
+        const std::string reg = temp_name(v);
+        const size_t comma = last.find(',', space);
+        if (comma == std::string::npos) return false;
+        const std::string dest = last.substr(space + 1, comma - space - 1);
+        if (dest.rfind(reg, 0) != 0) return false;
+        const std::string mask = dest.substr(reg.size());
+        if (!mask.empty() && mask[0] != '.') return false;
+        for (uint32_t c = 0; c < v.count; ++c)
+            if (!mask.empty() && mask.find(kComponents[v.swizzle[c]]) == std::string::npos) return false;
+        last.insert(space, "_sat");
+        define(result, v);
+        return true;
+    }
+
     void kill_always() {
         Value t = new_temp(4);
         emit("mov", temp_name(t), 0xF, {literal(-1.0f)});
@@ -2098,6 +2136,7 @@ private:
             Value d = new_temp(count);
             const Value lo = arg(1), hi = arg(2);
             if (pixel_ && is_literal(w.at(5), 0.0f) && is_literal(w.at(6), 1.0f)) {
+                if (fold_saturate(result, w.at(4))) return;
                 emit("mov_sat", temp_name(d), mask, {arg(0)});  // saturate()
             } else {
                 emit("max", temp_name(d), mask, {arg(0), lo});
@@ -2330,6 +2369,7 @@ private:
     std::unordered_map<uint32_t, Value> phi_registers_;
     std::set<size_t> skip_;  // positions not translated (conditions and counters b#/i# replace)
     std::map<size_t, FlowBool> bool_conditions_;  // branch or select position -> its uniform bool
+    std::unordered_map<uint32_t, size_t> code_after_;  // value id -> code_.size() after its instruction
     std::map<size_t, bool> kill_branches_;          // ps: branch to a lone OpKill -> kill on its false arm
     std::map<uint32_t, Loop> loops_;              // header label -> loop
     std::set<std::pair<uint32_t, uint32_t>> flow_bool_members_, flow_int_members_;

@@ -36,7 +36,7 @@ const Listing kListingTable[] = {
     {"000_program_3_4.vs.hlsl", "VShader", 13, 0},
     {"000_program_3_5.ps.hlsl", "PShader", 20, 4},
     {"002_listing_4_2.ps.hlsl", "main", 24, 1},
-    {"002_listings_4_3_4_4.ps.hlsl", "main", 37, 2},
+    {"002_listings_4_3_4_4.ps.hlsl", "main", 36, 2},
 };
 
 void PrintTo(const Listing& listing, std::ostream* os) { *os << listing.file; }

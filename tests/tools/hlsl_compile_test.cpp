@@ -486,3 +486,18 @@ TEST(HlslCompile, UnconditionalDiscardKillsEveryPixel) {
     write_file(vs, "float4 main(float4 p : POSITION) : POSITION {\n  if (p.x > 0) discard;\n  return p;\n}\n");
     EXPECT_EQ(sm2("compile " + vs + " -T vs_2_0").status, 1);
 }
+
+TEST(HlslCompile, SaturateFoldsIntoTheInstructionAndOneOverXIsRcp) {
+    // saturate(dot(a, b)) of a value nothing else reads: dp3_sat; 1 / x: rcp alone.
+    // a = (1, 2, 2), b = (0.5, 0.5, 0) in c0, c1: dot = 1.5 -> 1; 1 / a.z = 0.5; dot(a, a) = 9, not saturated.
+    const auto ps = compile("sat_fold",
+                            "float3 a; float3 b;\n"
+                            "float4 main() : COLOR {\n  return float4(saturate(dot(a, b)), 1 / a.z, dot(a, a), 0);\n}\n",
+                            "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    const cli_support::Run dis = sm2("dis " + ps);
+    EXPECT_NE(dis.out.find("dp3_sat"), std::string::npos) << dis.out;
+    EXPECT_EQ(dis.out.find("mov_sat"), std::string::npos) << dis.out;
+    EXPECT_EQ(dis.out.find("\nmul"), std::string::npos) << dis.out;
+    expect_near(run_output(ps, "--const c0=1,2,2,0 --const c1=0.5,0.5,0,0", "oC0"), {1, 0.5f, 9, 0});
+}
