@@ -98,6 +98,8 @@ struct Value {
     bool any = false;        // Condition: any() of a vector comparison (clip's test; only a kill reads it)
     bool row_major = false;  // Pointer into a RowMajor-decorated member
     int component = -1;      // Pointer to one component of a vector
+    uint32_t dynamic_index = 0;  // Pointer into a uniform array at a run-time index (vs_2_0: the loop counter)
+    int dynamic_stride = 0;      // registers per element of that array
 };
 
 struct CompileError : std::runtime_error {
@@ -193,11 +195,13 @@ private:
             case op::NoLine: continue;
             case op::EntryPoint:
                 entry_function_ = ins.words.at(1);
-                for (size_t k = 2; k < ins.words.size(); ++k)
-                    if ((ins.words[k] >> 24) == 0 && (ins.words[k] & 0xFF) == 0) {
-                        interface_.assign(ins.words.begin() + static_cast<long>(k) + 1, ins.words.end());
-                        break;
-                    }
+                // The interface ids follow the name, a nul-terminated string padded to whole words
+                // ("vmain": two words; the old test for a word of zero low and high bytes only
+                // found the end of names whose length is a multiple of 4, like "main").
+                if (ins.words.size() > 2) {
+                    const size_t k = 2 + literal_string(ins.words, 2).size() / 4 + 1;
+                    if (k <= ins.words.size()) interface_.assign(ins.words.begin() + static_cast<long>(k), ins.words.end());
+                }
                 break;
             case op::Decorate:
                 if (ins.words.size() >= 3) decorations_[ins.words[0]][ins.words[1]] = ins.words[2];
@@ -737,6 +741,7 @@ private:
         uint32_t merge = 0, header = 0;
         size_t back_edge = 0;  // the continue block's branch to the header
         int constant_count = -1;  // a [loop] with a literal count: rep on a `defi` register instead
+        uint32_t counter = 0;     // the counter's id when the body reads it: a float temp counts along
     };
     struct Construct {
         bool loop = false;
@@ -876,6 +881,7 @@ private:
         for (size_t p : skip_) {
             if (!has_result_id(body_[p].opcode)) continue;
             const uint32_t id = body_[p].words.at(1);
+            if (read_counters_.count(id)) continue;  // a loop counter the body reads: a float temp
             for (size_t use : uses_[id])
                 if (!skip_.count(use) && !consumers.count(use)) {
                     const auto load = uniform_integer_load(id);
@@ -955,10 +961,10 @@ private:
             }
         }
         if (!increment || phi_incoming_.at(counter).size() != 2) fail_at(i, kLoopForm);
+        // The counter read in the body (lights[i]): a float temp holds it, 0 before rep, + 1 before endrep.
+        bool counter_read = false;
         for (size_t use : uses_[counter])
-            if (use != c->second && use != increment)
-                fail_at(use, "the loop counter of a loop counted by a uniform int (`rep i#`) cannot be read as a value: "
-                             "SM2 has no integer registers to read it from");
+            if (use != c->second && use != increment) counter_read = true;
         for (size_t use : uses_[body_[increment].words.at(1)])
             if (use != k->second) fail_at(use, kLoopForm);
         std::vector<size_t> positions = load->second;
@@ -970,7 +976,8 @@ private:
         if (constant_count < 0) flow_int_members_.insert(load->first);
         skip_.insert(positions.begin(), positions.end());
         consumers.insert(i);
-        loops_[header] = Loop{load->first, merge_label, header, t->second, constant_count};
+        if (counter_read) read_counters_.insert(counter);
+        loops_[header] = Loop{load->first, merge_label, header, t->second, constant_count, counter_read ? counter : 0};
     }
 
     // Values read inside a loop but defined before it (and the header's phis) stay in their
@@ -1059,6 +1066,10 @@ private:
         const bool next = position_ + 1 < body_.size() && body_[position_ + 1].opcode == op::Label &&
                           body_[position_ + 1].words.at(0) == target;
         if (!open_.empty() && open_.back().loop && target == open_.back().header) {
+            if (const uint32_t counter = loops_.at(target).counter) {
+                const Value r = as_register(counter);
+                emit("add", temp_name(r), 1, {r, literal(1.0f)});
+            }
             line("endrep");
             return;
         }
@@ -1104,6 +1115,12 @@ private:
             throw CompileError("a loop counted by a uniform int inside another such loop: vs_2_0 allows one level of "
                                "rep/loop nesting");
         count_static_flow("rep");
+        if (l->second.counter) {
+            Value r = new_temp(1);
+            r.swizzle = {0, 0, 0, 0};
+            emit("mov", temp_name(r), 1, {literal(0.0f)});
+            define(l->second.counter, r);
+        }
         line("rep " + (l->second.constant_count >= 0 ? "i" + std::to_string(integer_defs_.at(l->second.constant_count))
                                                       : flow_register(l->second.member)));
         open_.push_back({true, l->second.merge, 0, l->second.header});
@@ -1437,6 +1454,22 @@ private:
 
     Value pointer_load(const Value& p) {
         const Type& t = types_.at(p.pointee);
+        if (p.storage == kStorageUniform && p.dynamic_index) {  // mova a0.x, i * stride; mov r, c[a0.x + n]
+            if (t.opcode == op::TypeMatrix) throw CompileError("a matrix in a uniform array indexed at run time is not supported");
+            Value i = as_register(p.dynamic_index);
+            if (p.dynamic_stride != 1) {
+                Value scaled = new_temp(1);
+                emit("mul", temp_name(scaled), 1, {component_view(i, 0), literal(static_cast<float>(p.dynamic_stride))});
+                scaled.swizzle = {0, 0, 0, 0};
+                i = scaled;
+            }
+            emit("mova", "a0", 1, {component_view(i, 0)});
+            const uint32_t count = type_of_value_components(p.pointee);
+            Value d = new_temp(count);
+            line("mov " + temp_name(d) + mask_text(mask_of(count)) + ", c[a0.x + " + std::to_string(p.index) + "]");
+            if (count == 1) d.swizzle = {0, 0, 0, 0};
+            return p.component >= 0 ? component_view(d, static_cast<uint32_t>(p.component)) : d;
+        }
         if (p.storage == kStorageUniform) {
             if (t.opcode == op::TypeMatrix) {
                 Value m;
@@ -1479,9 +1512,13 @@ private:
         v.kind = Value::Kind::Register;
         if (!pixel_) {
             const auto pos = std::find(interface_.begin(), interface_.end(), variable);
-            int index = 0;
+            int index = 0, same_semantic = 0;
             for (auto it = interface_.begin(); it != pos; ++it)
-                if (variables_.count(*it) && variables_.at(*it).second == kStorageInput) ++index;
+                if (variables_.count(*it) && variables_.at(*it).second == kStorageInput) {
+                    ++index;
+                    auto other = semantics_.find(*it);
+                    if (other != semantics_.end() && other->second == semantic) ++same_semantic;
+                }
             v.file = 'v';
             v.index = index;
             if (index > 15) throw CompileError("more than 16 vertex inputs (v0-v15)");
@@ -1489,7 +1526,10 @@ private:
                 {"POSITION", "position"}, {"BLENDWEIGHT", "blendweight"}, {"BLENDINDICES", "blendindices"},
                 {"NORMAL", "normal"}, {"PSIZE", "psize"}, {"TEXCOORD", "texcoord"}, {"TANGENT", "tangent"},
                 {"BINORMAL", "binormal"}, {"COLOR", "color"}, {"FOG", "fog"}, {"DEPTH", "depth"}};
-            const auto [name, n] = split_semantic(semantic);
+            // An array input (`float w[2] : TEXCOORD1`) reaches SPIR-V as one variable per element,
+            // each with the array's semantic: element k is usage index n + k, as fxc numbers them.
+            auto [name, n] = split_semantic(semantic);
+            n += same_semantic;
             auto u = kUsage.find(name);
             if (u == kUsage.end())
                 throw CompileError("vertex input semantic '" + semantic + "' has no D3D9 usage (POSITION, NORMAL, "
@@ -1551,7 +1591,10 @@ private:
         case op::AccessChain:
         case op::InBoundsAccessChain: {
             Value p = pointer_of(w.at(2));
-            for (size_t k = 3; k < w.size(); ++k) p = step_pointer(p, constant_int(w[k]));
+            for (size_t k = 3; k < w.size(); ++k) {
+                auto c = constants_.find(w[k]);
+                p = c == constants_.end() ? dynamic_step(p, w[k]) : step_pointer(p, constant_int(w[k]));
+            }
             define(w.at(1), p);
             return;
         }
@@ -1815,6 +1858,20 @@ private:
         p.storage = var->second.second;
         p.pointee = types_.at(var->second.first).element;
         p.index = 0;
+        return p;
+    }
+
+    // lights[i] with i a run-time value (vs_2_0: a loop counter): the element's registers are read
+    // at c[a0.x + n], a0.x = i * the element's register count (mova), when the pointer is loaded.
+    Value dynamic_step(Value p, uint32_t index) {
+        const Type& t = types_.at(p.pointee);
+        if (pixel_) throw CompileError("indexing a uniform array with a run-time value needs relative addressing, which ps_2_0 lacks");
+        if (p.storage != kStorageUniform || t.opcode != op::TypeArray)
+            throw CompileError("only uniform arrays can be indexed with a run-time value (vs_2_0: c[a0.x + n])");
+        if (p.dynamic_index) throw CompileError("a second run-time index into one uniform is not supported");
+        p.dynamic_index = index;
+        p.dynamic_stride = static_cast<int>(register_size(t.element, p.row_major));
+        p.pointee = t.element;
         return p;
     }
 
@@ -2370,7 +2427,8 @@ private:
     std::set<size_t> skip_;  // positions not translated (conditions and counters b#/i# replace)
     std::map<size_t, FlowBool> bool_conditions_;  // branch or select position -> its uniform bool
     std::unordered_map<uint32_t, size_t> code_after_;  // value id -> code_.size() after its instruction
-    std::map<size_t, bool> kill_branches_;          // ps: branch to a lone OpKill -> kill on its false arm
+    std::map<size_t, bool> kill_branches_;
+    std::set<uint32_t> read_counters_;  // vs_2_0: loop counters read in their loop's body          // ps: branch to a lone OpKill -> kill on its false arm
     std::map<uint32_t, Loop> loops_;              // header label -> loop
     std::set<std::pair<uint32_t, uint32_t>> flow_bool_members_, flow_int_members_;
     std::map<std::pair<uint32_t, uint32_t>, std::string> flow_registers_;  // member -> "b0", "i0"
