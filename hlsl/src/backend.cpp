@@ -1466,9 +1466,11 @@ private:
             emit("mova", "a0", 1, {component_view(i, 0)});
             const uint32_t count = type_of_value_components(p.pointee);
             Value d = new_temp(count);
-            line("mov " + temp_name(d) + mask_text(mask_of(count)) + ", c[a0.x + " + std::to_string(p.index) + "]");
+            // One component of a member (lights[i].pos.w): that component, replicated.
+            const std::string component = p.component >= 0 ? std::string(".") + kComponents[p.component] : "";
+            line("mov " + temp_name(d) + mask_text(mask_of(count)) + ", c[a0.x + " + std::to_string(p.index) + "]" + component);
             if (count == 1) d.swizzle = {0, 0, 0, 0};
-            return p.component >= 0 ? component_view(d, static_cast<uint32_t>(p.component)) : d;
+            return d;
         }
         if (p.storage == kStorageUniform) {
             if (t.opcode == op::TypeMatrix) {

@@ -53,6 +53,7 @@ const Twin kTwinTable[] = {
     {"05_projection", 0.0f, "m4x4 as 4 dp4, lrp with its operands in HLSL's order, extra movs"},
     {"06_depth_buffer", 0.0f, "m4x4 as 4 dp4"},
     {"07_skinning", 0.0f, "m4x3/m3x3 as dp4/dp3 rows, the weighted sums in another order (Program 2.3 of 000)"},
+    {"08_phong_lights", 0.0f, "rep i0 with a float counter and mova a0.x, i * 3 for each light's member (the assembly's loop aL, i0 and c[aL + n]: the same registers), m4x4 as 4 dp4, the final (ambient + diffuse) * material + specular as mad (Program 2.4 of 000)"},
     {"09_lake", 0.0f, "sincos twice per angle (sin and cos apart), the two waves summed in the other order"},
     {"10_texture_filtering", 0.0f, "m4x4 as 4 dp4"},
     {"11_texture_addressing", 0.0f, "none"},

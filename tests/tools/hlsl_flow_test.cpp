@@ -302,3 +302,16 @@ TEST(HlslFlow, Program24IndexesTheLightsWithTheLoopCounter) {
     expect_near(run_output(vs, "--int i0=1,0,0,0" + inputs, "oD0.xyz"), {0.25f, 0.5f, 0.125f});
     expect_near(run_output(vs, "--int i0=0,0,0,0" + inputs, "oPos"), {0, 0, 0, 1});
 }
+
+// One component of an element indexed by the counter: c[a0.x + n].w. v[k] = (k, 0, 0, 10 k + 1) in
+// c0..c3: the sum of .w over 3 iterations is 1 + 11 + 21 = 33; over 4, 33 + 31 = 64.
+TEST(HlslFlow, ComponentOfAnElementIndexedByTheCounter) {
+    const auto vs = compile("flow_component",
+                            "int n;\nfloat4 v[4];\nfloat4 main(float4 pos : POSITION) : POSITION {\n  float acc = 0;\n"
+                            "  for (int i = 0; i < n; i++) acc += v[i].w;\n  return float4(acc, pos.yzw);\n}\n",
+                            "vs_2_0");
+    ASSERT_FALSE(vs.empty());
+    const std::string consts = " --input v0=0,1,2,3 --const c0=0,0,0,1 --const c1=1,0,0,11 --const c2=2,0,0,21 --const c3=3,0,0,31";
+    expect_near(run_output(vs, "--int i0=3,0,0,0" + consts, "oPos"), {33, 1, 2, 3});
+    expect_near(run_output(vs, "--int i0=4,0,0,0" + consts, "oPos"), {64, 1, 2, 3});
+}
