@@ -42,7 +42,7 @@ constexpr uint32_t Undef = 1, Name = 5, MemberName = 6, String = 7, Line = 8, Ex
                    FNegate = 127, FAdd = 129, FSub = 131, FMul = 133, FDiv = 136, VectorTimesScalar = 142,
                    VectorTimesMatrix = 144, MatrixTimesVector = 145, Dot = 148, LogicalNot = 168,
                    Select = 169, FOrdEqual = 180, FUnordGreaterThanEqual = 191, Label = 248, Return = 253, SelectionMerge = 247, LoopMerge = 246, Branch = 249,
-                   BranchConditional = 250, Kill = 252, Phi = 245, IAdd = 128, IEqual = 170, INotEqual = 171,
+                   BranchConditional = 250, Kill = 252, Any = 154, Phi = 245, IAdd = 128, IEqual = 170, INotEqual = 171,
                    SGreaterThan = 173, SLessThan = 177,
                    NoLine = 317, DecorateString = 5632;
 }  // namespace op
@@ -95,8 +95,11 @@ struct Value {
     uint32_t compare = 0, lhs = 0, rhs = 0;
     // Pointer: the variable, its storage class and the constant register reached so far.
     uint32_t variable = 0, pointee = 0, storage = 0;
+    bool any = false;        // Condition: any() of a vector comparison (clip's test; only a kill reads it)
     bool row_major = false;  // Pointer into a RowMajor-decorated member
     int component = -1;      // Pointer to one component of a vector
+    uint32_t dynamic_index = 0;  // Pointer into a uniform array at a run-time index (vs_2_0: the loop counter)
+    int dynamic_stride = 0;      // registers per element of that array
 };
 
 struct CompileError : std::runtime_error {
@@ -192,11 +195,13 @@ private:
             case op::NoLine: continue;
             case op::EntryPoint:
                 entry_function_ = ins.words.at(1);
-                for (size_t k = 2; k < ins.words.size(); ++k)
-                    if ((ins.words[k] >> 24) == 0 && (ins.words[k] & 0xFF) == 0) {
-                        interface_.assign(ins.words.begin() + static_cast<long>(k) + 1, ins.words.end());
-                        break;
-                    }
+                // The interface ids follow the name, a nul-terminated string padded to whole words
+                // ("vmain": two words; the old test for a word of zero low and high bytes only
+                // found the end of names whose length is a multiple of 4, like "main").
+                if (ins.words.size() > 2) {
+                    const size_t k = 2 + literal_string(ins.words, 2).size() / 4 + 1;
+                    if (k <= ins.words.size()) interface_.assign(ins.words.begin() + static_cast<long>(k), ins.words.end());
+                }
                 break;
             case op::Decorate:
                 if (ins.words.size() >= 3) decorations_[ins.words[0]][ins.words[1]] = ins.words[2];
@@ -711,6 +716,7 @@ private:
                 }
             }
             if (!skip_.count(i)) translate(ins);
+            if (has_result_id(ins.opcode) && ins.words.size() >= 2) code_after_[ins.words[1]] = code_.size();
             std::vector<uint32_t> used = operand_ids(ins);
             used.insert(used.end(), incoming_uses_[i].begin(), incoming_uses_[i].end());
             release_after(i, used);
@@ -735,6 +741,7 @@ private:
         uint32_t merge = 0, header = 0;
         size_t back_edge = 0;  // the continue block's branch to the header
         int constant_count = -1;  // a [loop] with a literal count: rep on a `defi` register instead
+        uint32_t counter = 0;     // the counter's id when the body reads it: a float temp counts along
     };
     struct Construct {
         bool loop = false;
@@ -843,12 +850,14 @@ private:
                 phis_of_[label].push_back(p);
             }
         if (pixel_) {  // ps_2_0 has no flow control: the first branch the optimizer left is the error
-            for (size_t i = 0; i < body_.size(); ++i)
+            for (size_t i = 0; i < body_.size(); ++i) {
+                if (body_[i].opcode == op::SelectionMerge && kill_branch(i)) continue;
                 if (body_[i].opcode == op::SelectionMerge || body_[i].opcode == op::LoopMerge) {
                     position_ = i;
                     location_ = body_[i].location.line ? body_[i].location : entry_location_;
                     no_flow_control();
                 }
+            }
             return;
         }
 
@@ -872,6 +881,7 @@ private:
         for (size_t p : skip_) {
             if (!has_result_id(body_[p].opcode)) continue;
             const uint32_t id = body_[p].words.at(1);
+            if (read_counters_.count(id)) continue;  // a loop counter the body reads: a float temp
             for (size_t use : uses_[id])
                 if (!skip_.count(use) && !consumers.count(use)) {
                     const auto load = uniform_integer_load(id);
@@ -880,6 +890,22 @@ private:
                                  "vs_2_0) and cannot also be read as a value here");
                 }
         }
+    }
+
+    // ps_2_0: `if (c) discard;` and clip(x) reach the back end as a selection whose one arm is a
+    // block holding only OpKill. It becomes texkill of a value negative exactly when the pixel dies.
+    bool kill_branch(size_t i) {
+        if (i + 1 >= body_.size() || body_[i + 1].opcode != op::BranchConditional) return false;
+        const uint32_t merge = body_[i].words.at(0);
+        const auto& w = body_[i + 1].words;
+        const uint32_t kill = w.at(1) == merge ? w.at(2) : w.at(2) == merge ? w.at(1) : 0;
+        if (!kill || kill == merge) return false;
+        auto at = label_position_.find(kill);
+        if (at == label_position_.end() || at->second + 1 >= body_.size() || body_[at->second + 1].opcode != op::Kill)
+            return false;
+        kill_branches_[i + 1] = kill == w.at(2);  // kill on the false arm: the condition negated
+        skip_.insert({at->second, at->second + 1});
+        return true;
     }
 
     void analyze_loop(size_t i, std::set<size_t>& consumers) {
@@ -935,10 +961,10 @@ private:
             }
         }
         if (!increment || phi_incoming_.at(counter).size() != 2) fail_at(i, kLoopForm);
+        // The counter read in the body (lights[i]): a float temp holds it, 0 before rep, + 1 before endrep.
+        bool counter_read = false;
         for (size_t use : uses_[counter])
-            if (use != c->second && use != increment)
-                fail_at(use, "the loop counter of a loop counted by a uniform int (`rep i#`) cannot be read as a value: "
-                             "SM2 has no integer registers to read it from");
+            if (use != c->second && use != increment) counter_read = true;
         for (size_t use : uses_[body_[increment].words.at(1)])
             if (use != k->second) fail_at(use, kLoopForm);
         std::vector<size_t> positions = load->second;
@@ -950,7 +976,8 @@ private:
         if (constant_count < 0) flow_int_members_.insert(load->first);
         skip_.insert(positions.begin(), positions.end());
         consumers.insert(i);
-        loops_[header] = Loop{load->first, merge_label, header, t->second, constant_count};
+        if (counter_read) read_counters_.insert(counter);
+        loops_[header] = Loop{load->first, merge_label, header, t->second, constant_count, counter_read ? counter : 0};
     }
 
     // Values read inside a loop but defined before it (and the header's phis) stay in their
@@ -1039,6 +1066,10 @@ private:
         const bool next = position_ + 1 < body_.size() && body_[position_ + 1].opcode == op::Label &&
                           body_[position_ + 1].words.at(0) == target;
         if (!open_.empty() && open_.back().loop && target == open_.back().header) {
+            if (const uint32_t counter = loops_.at(target).counter) {
+                const Value r = as_register(counter);
+                emit("add", temp_name(r), 1, {r, literal(1.0f)});
+            }
             line("endrep");
             return;
         }
@@ -1084,6 +1115,12 @@ private:
             throw CompileError("a loop counted by a uniform int inside another such loop: vs_2_0 allows one level of "
                                "rep/loop nesting");
         count_static_flow("rep");
+        if (l->second.counter) {
+            Value r = new_temp(1);
+            r.swizzle = {0, 0, 0, 0};
+            emit("mov", temp_name(r), 1, {literal(0.0f)});
+            define(l->second.counter, r);
+        }
         line("rep " + (l->second.constant_count >= 0 ? "i" + std::to_string(integer_defs_.at(l->second.constant_count))
                                                       : flow_register(l->second.member)));
         open_.push_back({true, l->second.merge, 0, l->second.header});
@@ -1417,6 +1454,24 @@ private:
 
     Value pointer_load(const Value& p) {
         const Type& t = types_.at(p.pointee);
+        if (p.storage == kStorageUniform && p.dynamic_index) {  // mova a0.x, i * stride; mov r, c[a0.x + n]
+            if (t.opcode == op::TypeMatrix) throw CompileError("a matrix in a uniform array indexed at run time is not supported");
+            Value i = as_register(p.dynamic_index);
+            if (p.dynamic_stride != 1) {
+                Value scaled = new_temp(1);
+                emit("mul", temp_name(scaled), 1, {component_view(i, 0), literal(static_cast<float>(p.dynamic_stride))});
+                scaled.swizzle = {0, 0, 0, 0};
+                i = scaled;
+            }
+            emit("mova", "a0", 1, {component_view(i, 0)});
+            const uint32_t count = type_of_value_components(p.pointee);
+            Value d = new_temp(count);
+            // One component of a member (lights[i].pos.w): that component, replicated.
+            const std::string component = p.component >= 0 ? std::string(".") + kComponents[p.component] : "";
+            line("mov " + temp_name(d) + mask_text(mask_of(count)) + ", c[a0.x + " + std::to_string(p.index) + "]" + component);
+            if (count == 1) d.swizzle = {0, 0, 0, 0};
+            return d;
+        }
         if (p.storage == kStorageUniform) {
             if (t.opcode == op::TypeMatrix) {
                 Value m;
@@ -1459,9 +1514,13 @@ private:
         v.kind = Value::Kind::Register;
         if (!pixel_) {
             const auto pos = std::find(interface_.begin(), interface_.end(), variable);
-            int index = 0;
+            int index = 0, same_semantic = 0;
             for (auto it = interface_.begin(); it != pos; ++it)
-                if (variables_.count(*it) && variables_.at(*it).second == kStorageInput) ++index;
+                if (variables_.count(*it) && variables_.at(*it).second == kStorageInput) {
+                    ++index;
+                    auto other = semantics_.find(*it);
+                    if (other != semantics_.end() && other->second == semantic) ++same_semantic;
+                }
             v.file = 'v';
             v.index = index;
             if (index > 15) throw CompileError("more than 16 vertex inputs (v0-v15)");
@@ -1469,7 +1528,10 @@ private:
                 {"POSITION", "position"}, {"BLENDWEIGHT", "blendweight"}, {"BLENDINDICES", "blendindices"},
                 {"NORMAL", "normal"}, {"PSIZE", "psize"}, {"TEXCOORD", "texcoord"}, {"TANGENT", "tangent"},
                 {"BINORMAL", "binormal"}, {"COLOR", "color"}, {"FOG", "fog"}, {"DEPTH", "depth"}};
-            const auto [name, n] = split_semantic(semantic);
+            // An array input (`float w[2] : TEXCOORD1`) reaches SPIR-V as one variable per element,
+            // each with the array's semantic: element k is usage index n + k, as fxc numbers them.
+            auto [name, n] = split_semantic(semantic);
+            n += same_semantic;
             auto u = kUsage.find(name);
             if (u == kUsage.end())
                 throw CompileError("vertex input semantic '" + semantic + "' has no D3D9 usage (POSITION, NORMAL, "
@@ -1531,7 +1593,10 @@ private:
         case op::AccessChain:
         case op::InBoundsAccessChain: {
             Value p = pointer_of(w.at(2));
-            for (size_t k = 3; k < w.size(); ++k) p = step_pointer(p, constant_int(w[k]));
+            for (size_t k = 3; k < w.size(); ++k) {
+                auto c = constants_.find(w[k]);
+                p = c == constants_.end() ? dynamic_step(p, w[k]) : step_pointer(p, constant_int(w[k]));
+            }
             define(w.at(1), p);
             return;
         }
@@ -1641,6 +1706,10 @@ private:
             Value r = new_temp(b.count);
             for (uint32_t c = 0; c < b.count; ++c)
                 emit("rcp", temp_name(r), static_cast<uint8_t>(1 << c), {component_view(b, c)});
+            if (is_literal(w.at(2), 1.0f) && b.count == result_count()) {  // 1 / x: the rcp alone (1 * y is y)
+                define(w.at(1), r);
+                return;
+            }
             binary("mul", w.at(1), result_count(), a, r);
             return;
         }
@@ -1670,6 +1739,7 @@ private:
         case op::LogicalNot: {
             Value c = value(w.at(2));
             if (c.kind != Value::Kind::Condition) throw CompileError("boolean logic beyond one comparison is not supported");
+            if (c.any) throw CompileError("!any() is not supported: texkill kills when any component is negative");
             c.negate = !c.negate;
             for (uint32_t operand : {c.lhs, c.rhs})  // the comparison's operands live as long as the negation
                 if (operand != 0) extend_last_use(operand, last_use_[w.at(1)]);
@@ -1729,13 +1799,36 @@ private:
         case op::SelectionMerge: return;  // the branch that follows opens the if
         case op::LoopMerge: open_loop(); return;
         case op::Branch: branch_to(w.at(0)); return;
-        case op::BranchConditional: open_if(); return;
+        case op::BranchConditional: {
+            auto kill = kill_branches_.find(position_);
+            if (kill != kill_branches_.end()) {
+                kill_if(value(w.at(0)), kill->second);
+                return;
+            }
+            open_if();
+            return;
+        }
+        case op::Any: {
+            Value c = value(w.at(2));
+            if (c.kind != Value::Kind::Condition || c.lhs == 0) throw CompileError("any() of something other than one comparison is not supported");
+            c.any = true;
+            for (uint32_t operand : {c.lhs, c.rhs}) extend_last_use(operand, last_use_[w.at(1)]);
+            define(w.at(1), c);
+            return;
+        }
         case op::INotEqual:
         case op::IEqual:
             throw CompileError(pixel_ ? "a uniform bool or int read as a value (an integer comparison) is not supported in ps_2_0"
                                       : "a condition on uniform bools other than one bool alone (`b`, `!b`; not `a && b`), or a "
                                         "uniform bool or int read as a value, is not supported: vs_2_0's `if b#` tests one bool");
         case op::Kill:
+            if (pixel_) {  // a discard the optimizer left unconditional: every pixel dies
+                kill_always();
+                // The outputs' stores followed the discard and are gone; ps_2_0 must still write oC0.
+                if (std::none_of(code_.begin(), code_.end(), [](const std::string& l) { return l.rfind("mov oC0", 0) == 0; }))
+                    emit("mov", "oC0", 0xF, {literal_vector({0, 0, 0, 0}, 4)});
+                return;
+            }
             throw CompileError("flow control that depends on run-time values (an if, loop or discard the optimizer "
                                "could not flatten) is not supported by this compiler for " + profile());
         default: break;
@@ -1767,6 +1860,20 @@ private:
         p.storage = var->second.second;
         p.pointee = types_.at(var->second.first).element;
         p.index = 0;
+        return p;
+    }
+
+    // lights[i] with i a run-time value (vs_2_0: a loop counter): the element's registers are read
+    // at c[a0.x + n], a0.x = i * the element's register count (mova), when the pointer is loaded.
+    Value dynamic_step(Value p, uint32_t index) {
+        const Type& t = types_.at(p.pointee);
+        if (pixel_) throw CompileError("indexing a uniform array with a run-time value needs relative addressing, which ps_2_0 lacks");
+        if (p.storage != kStorageUniform || t.opcode != op::TypeArray)
+            throw CompileError("only uniform arrays can be indexed with a run-time value (vs_2_0: c[a0.x + n])");
+        if (p.dynamic_index) throw CompileError("a second run-time index into one uniform is not supported");
+        p.dynamic_index = index;
+        p.dynamic_stride = static_cast<int>(register_size(t.element, p.row_major));
+        p.pointee = t.element;
         return p;
     }
 
@@ -1909,8 +2016,97 @@ private:
         return d;
     }
 
+    // ps_2_0 saturate(x) where x is used by it alone and was just written by one instruction that
+    // takes _sat (`dp3 r0.x, ...` then saturate): that instruction gets `_sat` (dp3_sat, the
+    // same value as dp3 then mov_sat) and the result is x's register.
+    bool fold_saturate(uint32_t result, uint32_t x) {
+        auto after = code_after_.find(x);
+        auto u = uses_.find(x);
+        if (after == code_after_.end() || after->second != code_.size() || code_.empty() || u == uses_.end() ||
+            u->second.size() != 1)
+            return false;
+        const Value& v = value(x);
+        if (v.kind != Value::Kind::Register || v.file != 'r' || v.negate || temp_holders_[v.index] != 1) return false;
+        std::string& last = code_.back();
+        const size_t space = last.find(' ');
+        if (space == std::string::npos) return false;
+        const std::string mnemonic = last.substr(0, space);
+        static const std::set<std::string> kSat = {"mov", "add", "mul", "mad", "dp3", "dp4", "min", "max", "cmp", "lrp",
+                                                   "rcp", "rsq", "exp", "log", "pow", "nrm", "abs", "crs", "dp2add"};
+        if (!kSat.count(mnemonic)) return false;
+        // The destination: this register, a mask holding every component x reads.
+        const std::string reg = temp_name(v);
+        const size_t comma = last.find(',', space);
+        if (comma == std::string::npos) return false;
+        const std::string dest = last.substr(space + 1, comma - space - 1);
+        if (dest.rfind(reg, 0) != 0) return false;
+        const std::string mask = dest.substr(reg.size());
+        if (!mask.empty() && mask[0] != '.') return false;
+        for (uint32_t c = 0; c < v.count; ++c)
+            if (!mask.empty() && mask.find(kComponents[v.swizzle[c]]) == std::string::npos) return false;
+        last.insert(space, "_sat");
+        define(result, v);
+        return true;
+    }
+
+    void kill_always() {
+        Value t = new_temp(4);
+        emit("mov", temp_name(t), 0xF, {literal(-1.0f)});
+        line("texkill " + temp_name(t));
+    }
+
+    // texkill where the comparison `c` (negated once more by `negate`) holds: a temp whose four
+    // components (texkill tests all four) hold a - b, or cmp's -1/1 of it, so that one is negative
+    // exactly then; components past the comparison's size hold 0 or 1, which never kill.
+    void kill_if(Value c, bool negate) {
+        if (c.kind != Value::Kind::Condition) throw CompileError("a discard condition SM2 cannot evaluate without branches");
+        c.negate = c.negate != negate;
+        if (c.lhs == 0) {  // a constant condition the optimizer left
+            if ((c.compare != 0) != c.negate) kill_always();
+            return;
+        }
+        if (c.any && c.negate)
+            throw CompileError("discard when all components of a comparison hold (!any, all) is not supported: "
+                               "texkill kills when any component is negative (clip(x), `if (any(x < y)) discard;`)");
+        const Value a = as_register(c.lhs), b = as_register(c.rhs);
+        // As in select(): kill when first - second >= 0, or (when_negative) when it is < 0.
+        const uint32_t base = c.compare - (c.compare - op::FOrdEqual) % 2;
+        bool swap_operands = false, when_negative = c.negate, equality = false;
+        switch (base) {
+        case op::FOrdEqual: equality = true; break;
+        case op::FOrdEqual + 2: equality = true; when_negative = !when_negative; break;  // !=
+        case op::FOrdEqual + 4: when_negative = !when_negative; break;  // a < b: a - b < 0
+        case op::FOrdEqual + 6: swap_operands = true; when_negative = !when_negative; break;  // a > b: b - a < 0
+        case op::FOrdEqual + 8: swap_operands = true; break;  // a <= b: b - a >= 0
+        default: break;  // a >= b
+        }
+        const Value& first = swap_operands ? b : a;
+        Value second = swap_operands ? a : b;
+        second.negate = !second.negate;
+        const uint32_t n = std::max(a.count, b.count);
+        const uint8_t mask = n == 1 ? 0xF : mask_of(n);  // a scalar is replicated to all four
+        Value t = new_temp(4);
+        if (is_literal(c.rhs, 0.0f) || is_literal(c.lhs, 0.0f)) {  // x against 0: x itself, or -x
+            const bool zero_second = is_literal(swap_operands ? c.lhs : c.rhs, 0.0f);
+            emit("mov", temp_name(t), mask, {zero_second ? first : second});
+        } else {
+            emit("add", temp_name(t), mask, {first, second});
+        }
+        Value diff = t;
+        diff.count = n == 1 ? 4 : n;
+        if (equality) {  // -(a-b)^2 >= 0 only when a == b
+            Value neg = diff;
+            neg.negate = true;
+            emit("mul", temp_name(t), mask, {neg, diff});
+        }
+        if (!when_negative) emit("cmp", temp_name(t), mask, {diff, literal(-1.0f), literal(1.0f)});
+        if (mask != 0xF) emit("mov", temp_name(t), static_cast<uint8_t>(0xF & ~mask), {literal(when_negative ? 0.0f : 1.0f)});
+        line("texkill " + temp_name(t));
+    }
+
     // select(condition, x, y) with cmp (ps: src0 >= 0 ? src1 : src2) or sge/slt and lrp (vs).
     Value select(const Value& c, const Value& x, const Value& y, uint32_t count) {
+        if (c.any) throw CompileError("any() is supported only as a discard's condition (clip)");
         Value d = new_temp(count);
         const uint8_t mask = mask_of(count);
         if (c.lhs == 0) {  // a constant condition the optimizer left
@@ -1999,6 +2195,7 @@ private:
             Value d = new_temp(count);
             const Value lo = arg(1), hi = arg(2);
             if (pixel_ && is_literal(w.at(5), 0.0f) && is_literal(w.at(6), 1.0f)) {
+                if (fold_saturate(result, w.at(4))) return;
                 emit("mov_sat", temp_name(d), mask, {arg(0)});  // saturate()
             } else {
                 emit("max", temp_name(d), mask, {arg(0), lo});
@@ -2125,6 +2322,7 @@ private:
         auto c = constants_.find(id);
         if (c == constants_.end()) return false;
         const SpirvInstruction* s = &c->second;
+        if (s->opcode == op::ConstantNull) return expected == 0.0f;
         if (s->opcode == op::ConstantComposite && s->words.size() > 2) {
             for (size_t k = 2; k < s->words.size(); ++k)
                 if (!is_literal(s->words[k], expected)) return false;
@@ -2230,6 +2428,9 @@ private:
     std::unordered_map<uint32_t, Value> phi_registers_;
     std::set<size_t> skip_;  // positions not translated (conditions and counters b#/i# replace)
     std::map<size_t, FlowBool> bool_conditions_;  // branch or select position -> its uniform bool
+    std::unordered_map<uint32_t, size_t> code_after_;  // value id -> code_.size() after its instruction
+    std::map<size_t, bool> kill_branches_;
+    std::set<uint32_t> read_counters_;  // vs_2_0: loop counters read in their loop's body          // ps: branch to a lone OpKill -> kill on its false arm
     std::map<uint32_t, Loop> loops_;              // header label -> loop
     std::set<std::pair<uint32_t, uint32_t>> flow_bool_members_, flow_int_members_;
     std::map<std::pair<uint32_t, uint32_t>, std::string> flow_registers_;  // member -> "b0", "i0"

@@ -53,6 +53,7 @@ const Twin kTwinTable[] = {
     {"05_projection", 0.0f, "m4x4 as 4 dp4, lrp with its operands in HLSL's order, extra movs"},
     {"06_depth_buffer", 0.0f, "m4x4 as 4 dp4"},
     {"07_skinning", 0.0f, "m4x3/m3x3 as dp4/dp3 rows, the weighted sums in another order (Program 2.3 of 000)"},
+    {"08_phong_lights", 0.0f, "rep i0 with a float counter and mova a0.x, i * 3 for each light's member (the assembly's loop aL, i0 and c[aL + n]: the same registers), m4x4 as 4 dp4, the final (ambient + diffuse) * material + specular as mad (Program 2.4 of 000)"},
     {"09_lake", 0.0f, "sincos twice per angle (sin and cos apart), the two waves summed in the other order"},
     {"10_texture_filtering", 0.0f, "m4x4 as 4 dp4"},
     {"11_texture_addressing", 0.0f, "none"},
@@ -67,6 +68,9 @@ const Twin kTwinTable[] = {
     {"20_depth_of_field", 0.0f, "the 12 blur taps unrolled from a loop, 1/weight as rcp per component, m4x4/m3x3 as rows"},
     {"21_hdr_tone_mapping", 0.0f, "the 16-tap downsampling unrolled from a loop, c / (c + 1) as rcp per component, the HSL hue's cmps from the compiler's selects"},
     {"22_gbuffer", 0.0f, "m4x4 as 4 dp4, the TBN sum, the position's select (cmp) as compiled; the R32F and A2B10G10R10 targets compared as stored (002 listings 4.2, 4.3)"},
+    {"23_light_buffer", 0.0f, "clip(g3.w - 0.5) as mov + texkill (the assembly's sub), m4x4 as 4 dp4, the world position's divide as rcp + mul by 1 and eye - p as mad, the three lights' sums in another order, the light buffers written through temps"},
+    {"24_point_lights", 0.0f, "clip() of a float3 built with movs (the assembly writes the texkill operand in place), m4x4 as 4 dp4, 1/w as rcp, eye - p as mad, the light buffers written through temps"},
+    {"25_spot_lights", 0.0f, "three clip()s (three texkills of one value each, where the assembly has one of three components: the same pixels die), the cone's weighted sum fused into mads, m4x4 as 4 dp4, the light buffers written through temps"},
 };
 
 void PrintTo(const Twin& twin, std::ostream* os) { *os << twin.scene; }

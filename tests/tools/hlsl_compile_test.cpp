@@ -50,6 +50,29 @@ std::vector<float> run_output(const std::string& shader, const std::string& args
     return output_of(r.out, reg);
 }
 
+// Per lane of `sm2 run --lanes`: "killed" for a lane texkill discarded, else oC0's values as printed.
+std::vector<std::string> lane_results(const std::string& shader, const std::string& csv, const std::string& args = "") {
+    static int counter = 0;
+    const std::string lanes = tmp("lanes" + std::to_string(counter++) + ".csv");
+    write_file(lanes, csv);
+    const cli_support::Run r = sm2("run " + shader + " --lanes " + lanes + " " + args);
+    EXPECT_EQ(r.status, 0) << r.err;
+    std::vector<std::string> out;
+    std::istringstream lines(r.out);
+    for (std::string line; std::getline(lines, line);) {
+        if (line.rfind("lane ", 0) != 0) continue;
+        const size_t colon = line.find(": ");
+        const std::string rest = colon == std::string::npos ? line : line.substr(colon + 2);
+        out.push_back(rest.rfind("killed", 0) == 0 ? "killed" : rest.rfind("oC0 = ", 0) == 0 ? rest.substr(6) : rest);
+    }
+    return out;
+}
+
+bool has_texkill(const std::string& shader) {
+    const cli_support::Run r = sm2("dis " + shader);
+    return r.status == 0 && r.out.find("texkill r") != std::string::npos;
+}
+
 constexpr const char* kMatrixColumns =  // c0..c3 = (1,0,0,0) (0,2,0,0) (0,0,3,0) (1,1,1,1)
     " --const c0=1,0,0,0 --const c1=0,2,0,0 --const c2=0,0,3,0 --const c3=1,1,1,1";
 
@@ -233,9 +256,10 @@ TEST(HlslCompile, ErrorsAreLocatedInTheHlsl) {
     EXPECT_NE(r.err.find("vstex.hlsl(3,"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("vs_3_0"), std::string::npos) << r.err;
 
-    // A branch on a run-time value that needs real flow control.
+    // A loop on a run-time value that needs real flow control.
     const std::string branch = tmp("branch.hlsl");
-    write_file(branch, "float4 main(float2 uv : TEXCOORD0) : COLOR {\n  if (uv.x < 0.5) discard;\n  return 1;\n}\n");
+    write_file(branch, "float4 main(float2 uv : TEXCOORD0) : COLOR {\n  float x = uv.x;\n  while (x < 1) x = x * 2;\n"
+                       "  return x;\n}\n");
     r = sm2("compile " + branch + " -T ps_2_0");
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find("branch.hlsl("), std::string::npos) << r.err;
@@ -399,4 +423,81 @@ TEST(HlslCompile, DebugInfoAddsTheLineTableThatDisAndAsmRoundTrip) {
     ASSERT_FALSE(g.empty());
     for (const auto& shader : {plain, with, g})
         expect_near(run_output(shader, "--input t0=1,2,3,0 --const light=1,0.5,0", "oC0"), {2, 2, 2, 2});
+}
+
+TEST(HlslCompile, DiscardInAnIfBecomesTexkill) {
+    // if (uv.x > 0.5) discard: texkill of 0.5 - uv.x, negative exactly when uv.x > 0.5 (0.5 itself lives).
+    const auto ps = compile("discard_if",
+                            "float4 main(float2 uv : TEXCOORD0) : COLOR {\n  if (uv.x > 0.5) discard;\n"
+                            "  return float4(uv, 0, 1);\n}\n", "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    EXPECT_TRUE(has_texkill(ps));
+    EXPECT_EQ(lane_results(ps, "t0.x,t0.y\n0.75,0.5\n0.25,0.5\n0.5,0.125\n0.625,0\n"),
+              (std::vector<std::string>{"killed", "0.25 0.5 0 1", "0.5 0.125 0 1", "killed"}));
+    // <= and == against uniforms need cmp (texkill kills on < 0 only): k = (0.25, 2).
+    // Lane 0 (y 0.5, z 0) lives; lane 1 (y 0.25 <= 0.25) dies; lane 2 (z 2 == 2) dies; lane 3 lives.
+    const auto ps2 = compile("discard_cmp",
+                             "float2 k;\n"
+                             "float4 main(float4 a : TEXCOORD0) : COLOR {\n  if (a.y <= k.x) discard;\n"
+                             "  if (a.z == k.y) discard;\n  return a;\n}\n", "ps_2_0");
+    ASSERT_FALSE(ps2.empty());
+    EXPECT_EQ(lane_results(ps2, "t0.x,t0.y,t0.z,t0.w\n1,0.5,0,1\n1,0.25,0,1\n1,0.5,2,1\n1,0.5,2.5,1\n",
+                           "--const k=0.25,2,0,0"),
+              (std::vector<std::string>{"1 0.5 0 1", "killed", "killed", "1 0.5 2.5 1"}));
+    // `else discard`: the kill on the branch's false arm, negative exactly when a.x < 0.5 fails.
+    const auto ps3 = compile("discard_else",
+                             "float4 main(float4 a : TEXCOORD0) : COLOR {\n  float4 c = a;\n"
+                             "  if (a.x < 0.5) c = a * 2; else discard;\n  return c;\n}\n", "ps_2_0");
+    ASSERT_FALSE(ps3.empty());
+    EXPECT_EQ(lane_results(ps3, "t0.x,t0.y\n0.25,1\n0.5,1\n0.75,1\n0,0\n"),
+              (std::vector<std::string>{"0.5 2 0 2", "killed", "killed", "0 0 0 2"}));
+}
+
+TEST(HlslCompile, ClipBecomesTexkill) {
+    // clip(a.xy - 0.25): dies where a.x or a.y is below 0.25; a.z (not clipped) negative does not kill.
+    const auto ps = compile("clip2",
+                            "float4 main(float4 a : TEXCOORD0) : COLOR {\n  clip(a.xy - 0.25);\n  return a * 2;\n}\n",
+                            "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    EXPECT_TRUE(has_texkill(ps));
+    EXPECT_EQ(lane_results(ps, "t0.x,t0.y,t0.z,t0.w\n0.5,0.5,-1,1\n0.125,0.5,0,1\n0.5,0.125,0,1\n0.25,0.25,0,1\n"),
+              (std::vector<std::string>{"1 1 -2 2", "killed", "killed", "0.5 0.5 0 2"}));
+    // A scalar: clip(a.z) dies below 0 only (0 lives); a float3 with its w beyond: clip(a.xyz).
+    const auto ps1 = compile("clip1", "float4 main(float4 a : TEXCOORD0) : COLOR {\n  clip(a.z);\n  return a;\n}\n",
+                             "ps_2_0");
+    ASSERT_FALSE(ps1.empty());
+    EXPECT_EQ(lane_results(ps1, "t0.x,t0.y,t0.z,t0.w\n-1,-1,-0.125,1\n-1,-1,0,-1\n"),
+              (std::vector<std::string>{"killed", "-1 -1 0 -1"}));
+    const auto ps3 = compile("clip3", "float4 main(float4 a : TEXCOORD0) : COLOR {\n  clip(a.xyz);\n  return a;\n}\n",
+                             "ps_2_0");
+    ASSERT_FALSE(ps3.empty());
+    EXPECT_EQ(lane_results(ps3, "t0.x,t0.y,t0.z,t0.w\n0,0,0,-1\n0,0,-0.5,1\n"),
+              (std::vector<std::string>{"0 0 0 -1", "killed"}));
+}
+
+TEST(HlslCompile, UnconditionalDiscardKillsEveryPixel) {
+    const auto ps = compile("discard_all", "float4 main(float4 a : TEXCOORD0) : COLOR {\n  discard;\n  return a;\n}\n",
+                            "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    EXPECT_TRUE(has_texkill(ps));
+    EXPECT_EQ(lane_results(ps, "t0.x\n1\n-1\n"), (std::vector<std::string>{"killed", "killed"}));
+    // vs_2_0 has no texkill: a discard there stays an error (glslang or the back end).
+    const std::string vs = tmp("vs_discard.hlsl");
+    write_file(vs, "float4 main(float4 p : POSITION) : POSITION {\n  if (p.x > 0) discard;\n  return p;\n}\n");
+    EXPECT_EQ(sm2("compile " + vs + " -T vs_2_0").status, 1);
+}
+
+TEST(HlslCompile, SaturateFoldsIntoTheInstructionAndOneOverXIsRcp) {
+    // saturate(dot(a, b)) of a value nothing else reads: dp3_sat; 1 / x: rcp alone.
+    // a = (1, 2, 2), b = (0.5, 0.5, 0) in c0, c1: dot = 1.5 -> 1; 1 / a.z = 0.5; dot(a, a) = 9, not saturated.
+    const auto ps = compile("sat_fold",
+                            "float3 a; float3 b;\n"
+                            "float4 main() : COLOR {\n  return float4(saturate(dot(a, b)), 1 / a.z, dot(a, a), 0);\n}\n",
+                            "ps_2_0");
+    ASSERT_FALSE(ps.empty());
+    const cli_support::Run dis = sm2("dis " + ps);
+    EXPECT_NE(dis.out.find("dp3_sat"), std::string::npos) << dis.out;
+    EXPECT_EQ(dis.out.find("mov_sat"), std::string::npos) << dis.out;
+    EXPECT_EQ(dis.out.find("\nmul"), std::string::npos) << dis.out;
+    expect_near(run_output(ps, "--const c0=1,2,2,0 --const c1=0.5,0.5,0,0", "oC0"), {1, 0.5f, 9, 0});
 }

@@ -4,6 +4,7 @@
 // by hand (in the comments). ps_2_0 has no flow control: the same HLSL is a located error there.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -194,12 +195,6 @@ TEST(HlslFlow, LimitsAndUnsupportedFormsAreLocatedErrors) {
                         "vs_2_0");
     EXPECT_NE(err.find("flow_nested_rep.hlsl(7,1): error: a loop counted by a uniform int inside another"),
               std::string::npos) << err;
-    // The counter read as a value: rep has none.
-    err = compile_error("flow_counter",
-                        "int n;\nfloat4 main(float4 pos : POSITION) : POSITION {\n  float4 acc = pos;\n"
-                        "  for (int i = 0; i < n; i++) acc += i;\n  return acc;\n}\n",
-                        "vs_2_0");
-    EXPECT_NE(err.find("flow_counter.hlsl(4,1): error: the loop counter"), std::string::npos) << err;
     // The count read as a value too: it lives in i0 only.
     err = compile_error("flow_count_value",
                         "int n;\nfloat4 main(float4 pos : POSITION) : POSITION {\n  float4 acc = pos;\n"
@@ -248,4 +243,75 @@ TEST(HlslFlow, LoopAttributeKeepsAConstantCountLoopRolled) {
                                           "vs_2_0");
     EXPECT_NE(err.find("flow_rolled_300.hlsl(3,1): error: a rolled loop's count must be 0..255"), std::string::npos)
         << err;
+}
+
+// The counter read as a value (rep has none): a float temp counts along, 0 before rep, + 1 before
+// endrep. acc = pos + 0 + 1 + 2 for n = 3.
+TEST(HlslFlow, LoopCounterReadAsAValueIsAFloatTemp) {
+    const auto vs = compile("flow_counter",
+                            "int n;\nfloat4 main(float4 pos : POSITION) : POSITION {\n  float4 acc = pos;\n"
+                            "  for (int i = 0; i < n; i++) acc += i;\n  return acc;\n}\n",
+                            "vs_2_0");
+    ASSERT_FALSE(vs.empty());
+    EXPECT_TRUE(has_line(disassembly(vs), "rep i0"));
+    expect_near(run_output(vs, "--input v0=1,2,3,4 --int i0=3,0,0,0", "oPos"), {4, 5, 6, 7});
+    expect_near(run_output(vs, "--input v0=1,2,3,4 --int i0=0,0,0,0", "oPos"), {1, 2, 3, 4});
+}
+
+// The source document's Program 2.4 (000 l.1687): per-vertex Phong over n_lights lights, lights[i]
+// indexed by the loop counter: rep i0 with a float counter, each member read at c[a0.x + m] after
+// mova a0.x, i * 4 (a T_LIGHT takes 4 registers: pos c0, col_diff c1, col_spec c2, pn c3.x).
+// Inputs: pos (0,0,0), n (0,0,1), col (1,1,1); eye_pos (0,0,1): eye = (0,0,1), eye_rfl = (0,0,-1).
+// Light 0 at (0,0,-2): light = (0,0,-1), diffuse max(0, -1) = 0, specular pow(1, 2) = 1: + col_spec0
+// = (0.25, 0.5, 0.125). Light 1 at (3,0,4): light = (0.6, 0, 0.8), diffuse 0.8 * (0.5, 0.25, 1)
+// = (0.4, 0.2, 0.8), col_spec1 = 0. Two lights: (0.65, 0.7, 0.925); one: (0.25, 0.5, 0.125).
+TEST(HlslFlow, Program24IndexesTheLightsWithTheLoopCounter) {
+    const std::string hlsl =
+        "struct T_LIGHT { float3 pos; float3 col_diff; float3 col_spec; float pn; };\n"
+        "int n_lights;\nT_LIGHT lights[8];\nfloat4x4 mxLocalToView;\nfloat3 eye_pos;\n"
+        "struct T_VIN { float3 pos : TEXCOORD0; float3 n : TEXCOORD1; float3 col : TEXCOORD2; };\n"
+        "struct T_VOUT { float4 pos : POSITION; float3 col : COLOR0; };\n"
+        "T_VOUT main(T_VIN vin) {\n"
+        "  T_VOUT vout; int i; float3 eye, eye_rfl, light; float lp;\n"
+        "  vout.col = 0;\n"
+        "  eye = normalize(eye_pos - vin.pos);\n"
+        "  eye_rfl = reflect(eye, vin.n);\n"
+        "  for (i = 0; i < n_lights; i++) {\n"
+        "    light = normalize(lights[i].pos - vin.pos);\n"
+        "    lp = max(0, dot(vin.n, light));\n"
+        "    vout.col += lights[i].col_diff * lp;\n"
+        "    lp = max(0, pow(dot(eye_rfl, light), lights[i].pn));\n"
+        "    vout.col += lights[i].col_spec * lp;\n"
+        "  }\n"
+        "  vout.col *= vin.col;\n"
+        "  vout.pos = mul(mxLocalToView, float4(vin.pos, 1));\n"
+        "  return vout;\n"
+        "}\n";
+    const auto vs = compile("program24", hlsl, "vs_2_0");
+    ASSERT_FALSE(vs.empty());
+    const auto lines = disassembly(vs);
+    EXPECT_TRUE(has_line(lines, "rep i0"));
+    EXPECT_TRUE(std::any_of(lines.begin(), lines.end(), [](const std::string& l) { return l.find("c[a0.x + 1]") != std::string::npos; }));
+    EXPECT_TRUE(std::any_of(lines.begin(), lines.end(), [](const std::string& l) { return l.rfind("mova a0.x", 0) == 0; }));
+    const std::string inputs = " --input v0=0,0,0 --input v1=0,0,1 --input v2=1,1,1"
+                               " --const c0=0,0,-2,0 --const c1=0,0,0,0 --const c2=0.25,0.5,0.125,0 --const c3=2,0,0,0"
+                               " --const c4=3,0,4,0 --const c5=0.5,0.25,1,0 --const c6=0,0,0,0 --const c7=1,0,0,0"
+                               " --const c32=1,0,0,0 --const c33=0,1,0,0 --const c34=0,0,1,0 --const c35=0,0,0,1"
+                               " --const eye_pos=0,0,1,0";
+    expect_near(run_output(vs, "--int i0=2,0,0,0" + inputs, "oD0.xyz"), {0.65f, 0.7f, 0.925f});
+    expect_near(run_output(vs, "--int i0=1,0,0,0" + inputs, "oD0.xyz"), {0.25f, 0.5f, 0.125f});
+    expect_near(run_output(vs, "--int i0=0,0,0,0" + inputs, "oPos"), {0, 0, 0, 1});
+}
+
+// One component of an element indexed by the counter: c[a0.x + n].w. v[k] = (k, 0, 0, 10 k + 1) in
+// c0..c3: the sum of .w over 3 iterations is 1 + 11 + 21 = 33; over 4, 33 + 31 = 64.
+TEST(HlslFlow, ComponentOfAnElementIndexedByTheCounter) {
+    const auto vs = compile("flow_component",
+                            "int n;\nfloat4 v[4];\nfloat4 main(float4 pos : POSITION) : POSITION {\n  float acc = 0;\n"
+                            "  for (int i = 0; i < n; i++) acc += v[i].w;\n  return float4(acc, pos.yzw);\n}\n",
+                            "vs_2_0");
+    ASSERT_FALSE(vs.empty());
+    const std::string consts = " --input v0=0,1,2,3 --const c0=0,0,0,1 --const c1=1,0,0,11 --const c2=2,0,0,21 --const c3=3,0,0,31";
+    expect_near(run_output(vs, "--int i0=3,0,0,0" + consts, "oPos"), {33, 1, 2, 3});
+    expect_near(run_output(vs, "--int i0=4,0,0,0" + consts, "oPos"), {64, 1, 2, 3});
 }
