@@ -561,7 +561,11 @@ int run_bench(const BenchCliOptions& o) {
               << (o.numeric.threads == 1 ? "" : "s") << '\n'
               << "time per run: median " << fixed(median.seconds * 1000.0, 3) << " ms, best "
               << fixed(best.seconds * 1000.0, 3) << " ms\n"
-              << "frames/s: " << rate(static_cast<double>(median.frames.size()), median.seconds) << '\n'
+              << "frames/s: "
+              << (median.frames.empty() ? std::string("- (the stream presents no frame: runs/s ") +
+                                              rate(1.0, median.seconds) + ")"
+                                        : rate(static_cast<double>(median.frames.size()), median.seconds))
+              << '\n'
               << "pixels shaded/s: " << rate(static_cast<double>(s.pixels_shaded), median.seconds) << '\n'
               << "vertices/s: " << rate(static_cast<double>(s.vertices_shaded), median.seconds) << '\n'
               << "draws/s: " << rate(static_cast<double>(s.draws), median.seconds) << '\n';

@@ -530,6 +530,18 @@ TEST(CliReplay, BadArgumentsAreStatus2) {
     for (const char* command : {"replay", "bench", "diff"}) EXPECT_NE(help.out.find(command), std::string::npos) << command;
 }
 
+// A stream without Present (the d3d9ref translator's bench_1024) has no frame rate: bench says so
+// and gives runs per second instead of "0.000".
+TEST(CliBench, AStreamWithoutPresentHasNoFrameRate) {
+    const std::string dir = make_dir("bench_no_present");
+    write_file(dir + "/b.sm2cs", "sm2cs 1\nCreateDevice 4 4 A8R8G8B8\nClear TARGET 0xFF000000 1 0\n");
+    auto r = sm2("bench " + dir + "/b.sm2cs --repeat 3");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("0 frames"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("frames/s: - (the stream presents no frame: runs/s "), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("frames/s: 0"), std::string::npos) << r.out;
+}
+
 TEST(CliBench, ReportsRatesOfTheMedianRun) {
     const std::string dir = make_dir("bench");
     write_file(dir + "/b.sm2cs",
