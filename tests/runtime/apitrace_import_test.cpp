@@ -18,6 +18,7 @@
 #include "sm2/runtime/device.h"
 #include "sm2/runtime/image_io.h"
 #include "sm2/runtime/replay.h"
+#include "trace_event_writer.h"
 
 namespace sm2::runtime::apitrace {
 namespace {
@@ -545,46 +546,7 @@ TEST(ApitraceImport, PartialVolumeAndDepthUploadsAndResetOfLocksReset) {
 // built here: LockRect of the whole 2x2 surface (pitch 8) and of the rectangle { 1 0 2 2 }, whose
 // copy runs from its first value to its last (12 bytes: 4, a gap of 4, 4), then an upload to a
 // D24S8 surface, which D3D9 cannot lock: skipped with the reason; and a render target's upload.
-struct EventWriter {
-    std::vector<std::byte> out;
-    EventWriter& byte(uint8_t b) {
-        out.push_back(std::byte{b});
-        return *this;
-    }
-    EventWriter& uint(uint64_t v) {
-        do {
-            uint8_t b = v & 0x7F;
-            v >>= 7;
-            if (v) b |= 0x80;
-            byte(b);
-        } while (v);
-        return *this;
-    }
-    EventWriter& str(std::string_view text) {
-        uint(text.size());
-        for (char c : text) byte(static_cast<uint8_t>(c));
-        return *this;
-    }
-    EventWriter& arg(uint64_t index) { return byte(1).uint(index); }
-    EventWriter& u(uint64_t v) { return byte(4).uint(v); }
-    EventWriter& ptr(uint64_t p) { return byte(13).uint(p); }
-    EventWriter& one() { return byte(11).uint(1); }  // a pointer to one value: an array of one
-    EventWriter& enter(uint64_t id, std::string_view name, std::initializer_list<std::string_view> args) {
-        byte(0).uint(0).uint(id).str(name).uint(args.size());
-        for (auto a : args) str(a);
-        return *this;
-    }
-    EventWriter& enter_again(uint64_t id) { return byte(0).uint(0).uint(id); }
-    EventWriter& leave(uint64_t call) { return byte(1).uint(call); }
-    EventWriter& floats(std::initializer_list<float> values) {
-        byte(8).uint(values.size() * 4);
-        for (float f : values) {
-            const auto bits = std::bit_cast<uint32_t>(f);
-            for (int i = 0; i < 4; ++i) byte(static_cast<uint8_t>(bits >> (8 * i)));
-        }
-        return *this;
-    }
-};
+using EventWriter = test::TraceWriter;
 
 TEST(ApitraceImport, LockableDepthUploadsOfAHandMadeTrace) {
     EventWriter w;

@@ -11,6 +11,7 @@
 #include <snappy.h>
 
 #include "sm2/runtime/apitrace.h"
+#include "trace_event_writer.h"
 
 namespace sm2::runtime::apitrace {
 namespace {
@@ -154,41 +155,7 @@ TEST(ApitraceReader, HeaderAndValuesOfShaderScene) {
 
 // --- Hand-made event streams (the format before Snappy) ---
 
-struct Writer {
-    std::vector<std::byte> out;
-    Writer& byte(uint8_t b) {
-        out.push_back(std::byte{b});
-        return *this;
-    }
-    Writer& uint(uint64_t v) {
-        do {
-            uint8_t b = v & 0x7F;
-            v >>= 7;
-            if (v) b |= 0x80;
-            byte(b);
-        } while (v);
-        return *this;
-    }
-    Writer& str(std::string_view s) {
-        uint(s.size());
-        for (char c : s) byte(static_cast<uint8_t>(c));
-        return *this;
-    }
-    // version 6 header with no properties
-    static Writer v6() {
-        Writer w;
-        w.uint(6).uint(6).str("");
-        return w;
-    }
-    // enter of a new function signature `id` named `name` with args, thread 0
-    Writer& enter(uint64_t id, std::string_view name, std::initializer_list<std::string_view> args) {
-        byte(0).uint(0).uint(id).str(name).uint(args.size());
-        for (auto a : args) str(a);
-        return *this;
-    }
-    Writer& enter_again(uint64_t id) { return byte(0).uint(0).uint(id); }
-    Writer& leave(uint64_t no) { return byte(1).uint(no); }
-};
+using Writer = test::TraceWriter;
 
 std::vector<std::byte> container(const std::vector<std::byte>& stream, size_t chunk = 1 << 20) {
     std::vector<std::byte> out{std::byte{'a'}, std::byte{'t'}};
