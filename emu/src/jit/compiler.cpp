@@ -320,16 +320,9 @@ public:
         // would cost a fifth of the code. A temporary read anywhere starts as the batch holds it
         // (valid shaders write every temp before reading it; the copies of the others fold away).
         temps_ = new_scratch(llvm::ArrayType::get(vector_type, slot::kTempCount));
-        std::array<bool, slot::kTempCount> read{};
-        for (const Step& step : executable.steps())
-            for (unsigned k = 0; k < step.source_count && k < step.sources.size(); ++k)
-                if (step.sources[k].kind == OperandKind::Lanes && step.sources[k].index < slot::kTempFirst + slot::kTempCount &&
-                    step.sources[k].index >= slot::kTempFirst)
-                    read[step.sources[k].index - slot::kTempFirst] = true;
-        for (unsigned t = 0; t < slot::kTempCount; ++t)
-            if (read[t])
-                builder.CreateMemCpy(register_pointer(slot::kTempFirst + t), llvm::MaybeAlign(64),
-                                     batch_register(slot::kTempFirst + t), llvm::MaybeAlign(64),
+        for (unsigned t = slot::kTempFirst; t < slot::kTempFirst + slot::kTempCount; ++t)
+            if (executable.components_read()[t] != 0)
+                builder.CreateMemCpy(register_pointer(t), llvm::MaybeAlign(64), batch_register(t), llvm::MaybeAlign(64),
                                      sizeof(Batch::Register));
 
         defs_.clear();
