@@ -530,6 +530,16 @@ Float4 blend_levels(const Float4& a, const Float4& b, float frac) {
     return r;
 }
 
+// Probe `probe` of an anisotropic lookup of `probes` probes centred on p along `axis`
+// (lookup()'s spacing): p itself for a single probe.
+std::array<float, 3> probe_position(const std::array<float, 3>& p, const std::array<float, 3>& axis, unsigned probe,
+                                    unsigned probes) {
+    if (probes <= 1) return p;
+    const float n = static_cast<float>(probes);
+    const float t = (static_cast<float>(probe) + 0.5f) / n - 0.5f;
+    return {p[0] + t * axis[0], p[1] + t * axis[1], p[2] + t * axis[2]};
+}
+
 template <Format F>
 Float4 lookup(const Context& c, float u, float v, float w, int face, const Lod& lod, const std::array<float, 3>& axis) {
     const LevelChoice choice = choose_levels(c, lod);
@@ -545,8 +555,8 @@ Float4 lookup(const Context& c, float u, float v, float w, int face, const Lod& 
     Float4 sum{0, 0, 0, 0};
     const float n = static_cast<float>(lod.probes);
     for (unsigned i = 0; i < lod.probes; ++i) {
-        const float t = (static_cast<float>(i) + 0.5f) / n - 0.5f;
-        accumulate(sum, probe(u + t * axis[0], v + t * axis[1], w + t * axis[2]), 1.0f);
+        const std::array<float, 3> at = probe_position({u, v, w}, axis, i, lod.probes);
+        accumulate(sum, probe(at[0], at[1], at[2]), 1.0f);
     }
     for (float& s : sum) s /= n;
     return sum;
@@ -589,10 +599,75 @@ Float4 lookup_any(const Context& c, float u, float v, float w, int face, const L
     }
 }
 
+std::array<float, 3> diff(const std::array<float, 3>& a, const std::array<float, 3>& b) {
+    return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+
+// What sample() works out for the four lanes of quad q before filtering: each lane's normalized
+// coordinates (and cube face), its LOD (one per quad from the coarse derivatives; texldb lanes
+// with a bias their own) and the anisotropic major axis. The per-lane path and the block path's
+// anisotropic lookups both start from it.
+struct QuadLookups {
+    std::array<std::array<float, 3>, 4> p;  // normalized (u, v, w) per lane
+    std::array<int, 4> face{};
+    std::array<Lod, 4> lod;
+    std::array<std::array<float, 3>, 4> axis;
+};
+
+QuadLookups quad_lookups(const Context& c, const emu::TextureRequest& request, unsigned q) {
+    const auto& in = *request.coordinates;
+    QuadLookups s;
+    std::array<float, 4> bias{};
+    std::array<std::array<float, 3>, 4> raw;
+    for (unsigned i = 0; i < 4; ++i) {
+        const unsigned l = 4 * q + i;
+        float x = in[0][l], y = in[1][l], z = in[2][l];
+        const float w = in[3][l];
+        if (request.variant == emu::TextureVariant::Projected) {
+            x /= w;  // IEEE: w = 0 gives +-inf or NaN, handled below
+            y /= w;
+            z /= w;
+        } else if (request.variant == emu::TextureVariant::Bias) {
+            bias[i] = w;
+        }
+        raw[i] = {x, y, z};
+        if (c.cube) {
+            const Dir d = cube_direction(x, y, z);
+            s.p[i] = {d.u, d.v, 0};
+            s.face[i] = d.face;
+        } else {
+            s.p[i] = {x, y, c.volume ? z : 0.0f};
+        }
+    }
+    // Coarse derivatives, one LOD per quad: d/dx = TR - TL, d/dy = BL - TL. Cube maps take
+    // all four lanes' coordinates on the top-left lane's face.
+    std::array<float, 3> dx, dy;
+    if (c.cube) {
+        const Dir tl = project_to_face(raw[0][0], raw[0][1], raw[0][2], s.face[0]);
+        const Dir tr = project_to_face(raw[1][0], raw[1][1], raw[1][2], s.face[0]);
+        const Dir bl = project_to_face(raw[2][0], raw[2][1], raw[2][2], s.face[0]);
+        dx = {tr.u - tl.u, tr.v - tl.v, 0};
+        dy = {bl.u - tl.u, bl.v - tl.v, 0};
+    } else {
+        dx = diff(s.p[1], s.p[0]);
+        dy = diff(s.p[2], s.p[0]);
+    }
+    const double lx = length(to_texels(c, dx)), ly = length(to_texels(c, dy));
+    // The LOD changes nothing when both filters agree and there are no mips to choose.
+    const bool lod_matters = c.mip != Mip::None || c.mag != c.min || c.anisotropic;
+    const Lod quad_lod = lod_matters ? compute_lod(c, lx, ly, 0.0f) : Lod{};
+    for (unsigned i = 0; i < 4; ++i) {
+        s.lod[i] = bias[i] == 0.0f || !lod_matters ? quad_lod : compute_lod(c, lx, ly, bias[i]);
+        s.axis[i] = s.lod[i].major_axis == 0 ? dx : dy;
+    }
+    return s;
+}
+
 // ---------------------------------------------------------------------------------------------
-// 16 lanes at once: 2D lookups on a texture with 8-bit RGBA texels (A8R8G8B8, X8R8G8B8,
-// A8B8G8R8), POINT or LINEAR filtering, WRAP (power-of-two levels) or CLAMP addressing, no
-// sRGB, no anisotropy: what most draws sample. It is filter_level() and the level blend of
+// 16 lanes at once: 2D, volume and cube lookups on textures whose texels are 1, 2, 4 or 8 bytes
+// of UNORM or 32-bit float fields (block_format()), POINT or LINEAR filtering, anisotropic
+// included (block_sample_anisotropic()), WRAP (power-of-two levels), CLAMP or BORDER
+// addressing, no sRGB, no DXTn: what most draws sample. It is filter_level() and the level blend of
 // lookup() evaluated in AVX-512 registers with the same operations in the same order (IEEE
 // results are the same whatever the vector width), so its texels are bit for bit those of the
 // per-lane path; tests/runtime/sampler_block_test.cpp holds the two equal. The level of detail
@@ -648,7 +723,7 @@ bool block_address_supported(TextureAddress mode, bool all_pow2) {
 
 // Whether the 16-lane path covers this context; fills the level tables.
 bool block_supported(const Context& c, BlockLevels& levels) {
-    if (c.dxt || c.srgb || c.anisotropic) return false;
+    if (c.dxt || c.srgb) return false;
     const std::optional<BlockFormat> format = block_format(c.format);
     if (!format) return false;
     levels.format = *format;
@@ -1257,6 +1332,64 @@ SM2_AVX512 void block_choose_levels(const Context& c, bool lod_matters, const st
     _mm_storeu_si128(reinterpret_cast<__m128i*>(linear.data()), _mm256_castsi256_si128(filter));
 }
 
+// An anisotropic lookup on the block path: the per-lane set-up (quad_lookups(), scalar: four
+// quads a batch), then each probe of every lane filtered 16 lanes at once by block_lookup() and
+// summed per lane in lookup()'s order. A lane of a single probe is that probe's value.
+SM2_AVX512 void block_sample_anisotropic(const Context& c, const BlockLevels& levels, const emu::TextureRequest& request,
+                                         unsigned quads, std::array<emu::FloatLanes, 4>& texels) {
+    std::array<QuadLookups, emu::kBatchQuads> quad;
+    std::array<LevelChoice, emu::kBatchLanes> choice;
+    unsigned most = 1;
+    for (unsigned q = 0; q < quads; ++q) {
+        quad[q] = quad_lookups(c, request, q);
+        for (unsigned i = 0; i < 4; ++i) {
+            choice[4 * q + i] = choose_levels(c, quad[q].lod[i]);
+            most = std::max(most, quad[q].lod[i].probes);
+        }
+    }
+    std::array<Float4, emu::kBatchLanes> sum{};
+    BlockLanes lanes;
+    std::array<emu::FloatLanes, 4> probe_texels;
+    for (unsigned probe = 0; probe < most; ++probe) {
+        __mmask16 active = 0;
+        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+            // Lanes without a pixel or past their last probe read level c.first at (0, 0).
+            lanes.u[l] = lanes.v[l] = lanes.w[l] = lanes.frac[l] = 0.0f;
+            lanes.l0[l] = lanes.l1[l] = c.first;
+            lanes.linear[l] = lanes.face[l] = 0;
+            const unsigned q = l / 4, i = l % 4;
+            if (q >= quads || probe >= quad[q].lod[i].probes) continue;
+            active = static_cast<__mmask16>(active | 1u << l);
+            const std::array<float, 3> at = probe_position(quad[q].p[i], quad[q].axis[i], probe, quad[q].lod[i].probes);
+            lanes.u[l] = at[0];
+            lanes.v[l] = at[1];
+            lanes.w[l] = at[2];
+            lanes.face[l] = quad[q].face[i];
+            lanes.l0[l] = choice[l].l0;
+            lanes.l1[l] = choice[l].l1;
+            lanes.frac[l] = choice[l].frac;
+            lanes.linear[l] = choice[l].filter == Filter::Linear ? 1 : 0;
+        }
+        block_lookup(c, levels, lanes, active, probe_texels);
+        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+            if (!(active >> l & 1u)) continue;
+            const Float4 texel{probe_texels[0][l], probe_texels[1][l], probe_texels[2][l], probe_texels[3][l]};
+            if (quad[l / 4].lod[l % 4].probes <= 1) sum[l] = texel;
+            else accumulate(sum[l], texel, 1.0f);
+        }
+    }
+    for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+        Float4 r{0, 0, 0, 1};  // lanes without a lookup
+        if (l < 4 * quads) {
+            r = sum[l];
+            const unsigned probes = quad[l / 4].lod[l % 4].probes;
+            if (probes > 1)
+                for (float& v : r) v /= static_cast<float>(probes);
+        }
+        for (unsigned k = 0; k < 4; ++k) texels[k][l] = r[k];
+    }
+}
+
 // sample() for a stage the block path covers: each lane's (u, v) (divided by w for texldp),
 // per quad the texel-space lengths of the coarse derivatives (TR - TL, BL - TL) and one level
 // choice (texldb lanes with a bias choose their own; a batch whose lengths are the stage's last
@@ -1264,6 +1397,7 @@ SM2_AVX512 void block_choose_levels(const Context& c, bool lod_matters, const st
 SM2_AVX512 void block_sample(const Context& c, const BlockLevels& levels, const emu::TextureRequest& request, unsigned quads,
                              TextureSampler::BatchLevelMemo& memo, std::array<emu::FloatLanes, 4>& texels) {
     static_assert(emu::kBatchQuads == 4, "block_coordinates() holds 4 quads' lengths");
+    if (c.anisotropic) return block_sample_anisotropic(c, levels, request, quads, texels);
     const auto& in = *request.coordinates;
     const bool biased = request.variant == emu::TextureVariant::Bias;
     BlockLanes lanes;
@@ -1317,14 +1451,6 @@ TextureSampler::LodInfo TextureSampler::level_of_detail(unsigned stage, const st
     const Lod lod = compute_lod(c, length(ddx_texels), length(ddy_texels), lod_bias);
     return {lod.lambda, lod.probes, lod.magnify};
 }
-
-namespace {
-
-std::array<float, 3> diff(const std::array<float, 3>& a, const std::array<float, 3>& b) {
-    return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-
-}  // namespace
 
 Float4 TextureSampler::sample_gradient(unsigned stage, const std::array<float, 3>& coord, const std::array<float, 3>& ddx,
                                        const std::array<float, 3>& ddy, float lod_bias) const {
@@ -1384,53 +1510,10 @@ void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::
     const Stage& s = stages_[request.sampler];
     if (s.texture == nullptr || s.texture->levels() == 0) return;  // unbound or empty: (0, 0, 0, 1)
     const Context c = make_context(*s.texture, s.state, precision_);
-    const auto& in = *request.coordinates;
-
     for (unsigned q = 0; q < quads; ++q) {
-        std::array<std::array<float, 3>, 4> p;  // normalized (u, v, w) per lane
-        std::array<float, 4> bias{};
-        std::array<int, 4> face{};
-        std::array<std::array<float, 3>, 4> raw;
+        const QuadLookups set = quad_lookups(c, request, q);
         for (unsigned i = 0; i < 4; ++i) {
-            const unsigned l = 4 * q + i;
-            float x = in[0][l], y = in[1][l], z = in[2][l];
-            const float w = in[3][l];
-            if (request.variant == emu::TextureVariant::Projected) {
-                x /= w;  // IEEE: w = 0 gives +-inf or NaN, handled below
-                y /= w;
-                z /= w;
-            } else if (request.variant == emu::TextureVariant::Bias) {
-                bias[i] = w;
-            }
-            raw[i] = {x, y, z};
-            if (c.cube) {
-                const Dir d = cube_direction(x, y, z);
-                p[i] = {d.u, d.v, 0};
-                face[i] = d.face;
-            } else {
-                p[i] = {x, y, c.volume ? z : 0.0f};
-            }
-        }
-        // Coarse derivatives, one LOD per quad: d/dx = TR - TL, d/dy = BL - TL. Cube maps take
-        // all four lanes' coordinates on the top-left lane's face.
-        std::array<float, 3> dx, dy;
-        if (c.cube) {
-            const Dir tl = project_to_face(raw[0][0], raw[0][1], raw[0][2], face[0]);
-            const Dir tr = project_to_face(raw[1][0], raw[1][1], raw[1][2], face[0]);
-            const Dir bl = project_to_face(raw[2][0], raw[2][1], raw[2][2], face[0]);
-            dx = {tr.u - tl.u, tr.v - tl.v, 0};
-            dy = {bl.u - tl.u, bl.v - tl.v, 0};
-        } else {
-            dx = diff(p[1], p[0]);
-            dy = diff(p[2], p[0]);
-        }
-        const double lx = length(to_texels(c, dx)), ly = length(to_texels(c, dy));
-        // The LOD changes nothing when both filters agree and there are no mips to choose.
-        const bool lod_matters = c.mip != Mip::None || c.mag != c.min || c.anisotropic;
-        const Lod quad_lod = lod_matters ? compute_lod(c, lx, ly, 0.0f) : Lod{};
-        for (unsigned i = 0; i < 4; ++i) {
-            const Lod lod = bias[i] == 0.0f || !lod_matters ? quad_lod : compute_lod(c, lx, ly, bias[i]);
-            const Float4 r = lookup_any(c, p[i][0], p[i][1], p[i][2], face[i], lod, lod.major_axis == 0 ? dx : dy);
+            const Float4 r = lookup_any(c, set.p[i][0], set.p[i][1], set.p[i][2], set.face[i], set.lod[i], set.axis[i]);
             for (unsigned k = 0; k < 4; ++k) texels[k][4 * q + i] = r[k];
         }
     }

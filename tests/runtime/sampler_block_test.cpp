@@ -60,7 +60,7 @@ SamplerState random_state(std::mt19937& rng) {
     s.mip_filter = kFilters[rng() % 4];
     s.max_mip_level = rng() % 4 == 0 ? rng() % 5 : 0;
     s.mip_lod_bias = rng() % 3 == 0 ? static_cast<float>(static_cast<int>(rng() % 400) - 200) / 64.0f : 0.0f;
-    s.max_anisotropy = 1 + rng() % 4;
+    s.max_anisotropy = rng() % 2 ? 1 + rng() % 4 : 1 + rng() % 16;
     s.border_color = static_cast<uint32_t>(rng());
     return s;
 }
@@ -109,7 +109,7 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
                               Format::A8L8,      Format::A8,       Format::L16,       Format::R3G3B2,
                               Format::A8R3G3B2,  Format::A16B16G16R16, Format::G32R32F};
     unsigned block_requests = 0, total = 0, volume_block_requests = 0, narrow_block_requests = 0, wide_block_requests = 0;
-    unsigned cube_block_requests = 0;
+    unsigned cube_block_requests = 0, anisotropic_block_requests = 0;
     for (unsigned round = 0; round < 450; ++round) {
         const Format format = formats[rng() % std::size(formats)];
         const bool pow2 = rng() % 4 != 0;
@@ -149,6 +149,8 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
                 narrow_block_requests += applies && narrow ? 1 : 0;
                 wide_block_requests += applies && wide ? 1 : 0;
                 cube_block_requests += applies && cube ? 1 : 0;
+                anisotropic_block_requests +=
+                    applies && state.min_filter == TextureFilter::Anisotropic && state.max_anisotropy > 1 ? 1 : 0;
                 // (R32F's random texels include NaNs; which NaN a sum of two gives depends on the
                 // operand order a compiler picks, and the engine stores every NaN as one pattern.)
                 for (unsigned c = 0; c < 4; ++c)
@@ -169,6 +171,7 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
         EXPECT_GT(narrow_block_requests, total / 10);
         EXPECT_GT(wide_block_requests, total / 40);
         EXPECT_GT(cube_block_requests, total / 20);
+        EXPECT_GT(anisotropic_block_requests, total / 20);
     }
 }
 
