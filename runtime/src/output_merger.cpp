@@ -144,10 +144,12 @@ template <typename T>
 // Channels the format lacks read as their layout says (X8: alpha 1) and store nothing (the
 // byte stays 0, as layout::encode leaves it).
 // valid: every stored channel an 8-bit UNORM in its own byte (the compiler-vectorized path and
-// the AVX-512 one); wide: every stored channel a UNORM field of up to 16 bits, none shared
-// (A2B10G10R10, A2R10G10B10, G16R16 too; the AVX-512 path only).
+// the AVX-512 one); wide: every stored channel a UNORM field of up to 16 bits within one 32-bit
+// word, none shared (A2B10G10R10, A2R10G10B10, G16R16 and the 8-byte A16B16G16R16 too; the
+// AVX-512 path only).
 struct Unorm8Texel {
     bool valid = false, wide = false;
+    unsigned words = 1;              // 32-bit words per texel: 1 or 2
     std::array<int8_t, 4> shift{};   // lowest bit of the channel's field in the texel; -1: not stored
     std::array<uint32_t, 4> mask{};  // 2^n - 1 of the channel's field
     Vec4 missing{};                  // value read for a channel that is not stored
@@ -155,8 +157,8 @@ struct Unorm8Texel {
 Unorm8Texel unorm8_layout(const FormatInfo& info) {
     Unorm8Texel t;
     const layout::Layout lay = layout::layout_of(info.format);
-    if (!lay.valid || info.bytes != 4 || info.kind != FormatKind::Color) return t;
-    uint32_t used = 0;
+    if (!lay.valid || (info.bytes != 4 && info.bytes != 8) || info.kind != FormatKind::Color) return t;
+    uint64_t used = 0;
     bool bytes = true;
     for (unsigned c = 0; c < 4; ++c) {
         const layout::Channel ch = lay.rgba[c];
@@ -165,8 +167,8 @@ Unorm8Texel unorm8_layout(const FormatInfo& info) {
             t.missing[c] = ch.type == layout::Type::One ? 1.0f : 0.0f;
             continue;
         }
-        if (ch.type != layout::Type::Unorm || ch.bits == 0 || ch.bits > 16 || ch.shift + ch.bits > 32) return t;
-        const uint32_t field = ((1u << ch.bits) - 1u) << ch.shift;
+        if (ch.type != layout::Type::Unorm || ch.bits == 0 || ch.bits > 16 || ch.shift % 32 + ch.bits > 32) return t;
+        const uint64_t field = ((uint64_t{1} << ch.bits) - 1u) << ch.shift;
         if (used & field) return t;  // one field for several channels (luminance)
         used |= field;
         t.shift[c] = static_cast<int8_t>(ch.shift);
@@ -174,7 +176,8 @@ Unorm8Texel unorm8_layout(const FormatInfo& info) {
         bytes = bytes && ch.bits == 8 && ch.shift % 8 == 0;
     }
     t.wide = true;
-    t.valid = bytes;
+    t.words = info.bytes / 4;
+    t.valid = bytes && t.words == 1;
     return t;
 }
 
@@ -319,7 +322,8 @@ SM2_AVX512 inline __m512 saturate16(__m512 v) {
 // merge_unorm8() with its loads, conversions and stores in AVX-512 registers: one gather of the
 // 16 texels, unorm8::decode, saturate, blend_batch(), unorm8::encode, one scatter. The same
 // IEEE operations as merge_unorm8(), so the same bytes (output_merger_fast_test). offset: byte
-// offset of each lane's texel, for the lanes of `write`.
+// offset of each lane's texel, for the lanes of `write`. 8-byte texels (fmt.words 2) take a
+// gather and a scatter per 32-bit word.
 // A batch whose 4 quads lie side by side in one quad row (x0, x0 + 2, x0 + 4, x0 + 6 at y0):
 // its texels are two runs of 8 in rows y0 and y0 + 1, read and written with masked row
 // loads/stores instead of a gather and a scatter. kRowLane[r][c]: the lane of row r, column c.
@@ -344,19 +348,31 @@ SM2_AVX512 void merge_unorm8_avx512(const BlendState& b, const Unorm8Texel& fmt,
     const __mmask8 row0 = row_run >= 0 ? row_mask(write, 0) : 0, row1 = row_run >= 0 ? row_mask(write, 1) : 0;
     std::byte* const run0 = row_run >= 0 ? bytes + row_run : bytes;
     std::byte* const run1 = run0 + surface.row_pitch();
+    // 8-byte texels: a row is 8 qwords; lane l's low word is dword 2 * column (+ 16 for row 1)
+    // of the two rows, its high word the next.
+    const bool two = fmt.words == 2;
+    const __m512i from_rows_low = _mm512_setr_epi32(0, 2, 16, 18, 4, 6, 20, 22, 8, 10, 24, 26, 12, 14, 28, 30);
+    const __m512i from_rows_high = _mm512_add_epi32(from_rows_low, _mm512_set1_epi32(1));
+    const __m512i word1 = _mm512_add_epi32(where, _mm512_set1_epi32(4));
     __m512 dst[4] = {}, out[4];
     if (b.enable || mask != 0xF) {
-        __m512i stored;
-        if (row_run >= 0) {
+        __m512i stored[2] = {_mm512_setzero_si512(), _mm512_setzero_si512()};
+        if (row_run >= 0 && two) {
+            const __m512i r0 = _mm512_maskz_loadu_epi64(row0, run0), r1 = _mm512_maskz_loadu_epi64(row1, run1);
+            stored[0] = _mm512_maskz_permutex2var_epi32(lanes, r0, from_rows_low, r1);
+            stored[1] = _mm512_maskz_permutex2var_epi32(lanes, r0, from_rows_high, r1);
+        } else if (row_run >= 0) {
             const __m512i r0 = _mm512_castsi256_si512(_mm256_maskz_loadu_epi32(row0, run0));
             const __m512i r1 = _mm512_castsi256_si512(_mm256_maskz_loadu_epi32(row1, run1));
-            stored = _mm512_maskz_permutex2var_epi32(lanes, r0, from_rows, r1);
+            stored[0] = _mm512_maskz_permutex2var_epi32(lanes, r0, from_rows, r1);
         } else {
-            stored = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, where, bytes, 1);
+            stored[0] = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, where, bytes, 1);
+            if (two) stored[1] = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, word1, bytes, 1);
         }
         for (unsigned c = 0; c < 4; ++c)
             dst[c] = fmt.shift[c] < 0 ? _mm512_set1_ps(fmt.missing[c])
-                                      : unorm8::decode_field(stored, static_cast<unsigned>(fmt.shift[c]), fmt.mask[c]);
+                                      : unorm8::decode_field(stored[fmt.shift[c] / 32], static_cast<unsigned>(fmt.shift[c] % 32),
+                                                             fmt.mask[c]);
     }
     for (unsigned c = 0; c < 4; ++c) out[c] = saturate16(_mm512_loadu_ps(src[c].v.data()));
     if (b.enable) {
@@ -377,19 +393,29 @@ SM2_AVX512 void merge_unorm8_avx512(const BlendState& b, const Unorm8Texel& fmt,
         }
     }
     // out and dst are in [0, 1].
-    __m512i packed = _mm512_setzero_si512();
+    __m512i packed[2] = {_mm512_setzero_si512(), _mm512_setzero_si512()};
     for (unsigned c = 0; c < 4; ++c) {
         if (fmt.shift[c] < 0) continue;
         // A masked channel stores what it read (which encodes back to the same byte).
         const __m512 value = mask >> c & 1u ? out[c] : dst[c];
-        packed = _mm512_or_si512(packed, _mm512_slli_epi32(unorm8::encode(value, static_cast<double>(fmt.mask[c])),
-                                                           static_cast<unsigned>(fmt.shift[c])));
+        __m512i& word = packed[fmt.shift[c] / 32];
+        word = _mm512_or_si512(word, _mm512_slli_epi32(unorm8::encode(value, static_cast<double>(fmt.mask[c])),
+                                                       static_cast<unsigned>(fmt.shift[c] % 32)));
     }
-    if (row_run >= 0) {
-        _mm256_mask_storeu_epi32(run0, row0, _mm512_castsi512_si256(_mm512_permutexvar_epi32(to_row0, packed)));
-        _mm256_mask_storeu_epi32(run1, row1, _mm512_castsi512_si256(_mm512_permutexvar_epi32(to_row1, packed)));
+    if (row_run >= 0 && two) {
+        // Row r's qword j: lane kRowLane[r][j]'s low word, then its high word.
+        const __m512i qwords_row0 = _mm512_setr_epi32(0, 16, 1, 17, 4, 20, 5, 21, 8, 24, 9, 25, 12, 28, 13, 29);
+        const __m512i qwords_row1 = _mm512_setr_epi32(2, 18, 3, 19, 6, 22, 7, 23, 10, 26, 11, 27, 14, 30, 15, 31);
+        _mm512_mask_storeu_epi64(run0, row0, _mm512_permutex2var_epi32(packed[0], qwords_row0, packed[1]));
+        _mm512_mask_storeu_epi64(run1, row1, _mm512_permutex2var_epi32(packed[0], qwords_row1, packed[1]));
+    } else if (two) {
+        _mm512_mask_i32scatter_epi32(bytes, lanes, where, packed[0], 1);
+        _mm512_mask_i32scatter_epi32(bytes, lanes, word1, packed[1], 1);
+    } else if (row_run >= 0) {
+        _mm256_mask_storeu_epi32(run0, row0, _mm512_castsi512_si256(_mm512_permutexvar_epi32(to_row0, packed[0])));
+        _mm256_mask_storeu_epi32(run1, row1, _mm512_castsi512_si256(_mm512_permutexvar_epi32(to_row1, packed[0])));
     } else {
-        _mm512_mask_i32scatter_epi32(bytes, lanes, where, packed, 1);
+        _mm512_mask_i32scatter_epi32(bytes, lanes, where, packed[0], 1);
     }
 }
 
@@ -555,13 +581,14 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
 
         if (!srgb && !in.generic_path) {
             const Unorm8Texel& fmt = unorm8_texel(*info);
-            if ((fmt.valid || (fmt.wide && cpu_has_avx512())) && distinct) {
-                if (cpu_has_avx512() && surface->bytes().size() <= size_t{INT32_MAX}) {
+            const bool block = fmt.wide && cpu_has_avx512() && surface->bytes().size() <= size_t{INT32_MAX};
+            if ((fmt.valid || block) && distinct) {
+                if (block) {
                     std::array<int32_t, kLanes> offset;  // used for the lanes in `write` only
                     const auto pitch = static_cast<uint32_t>(surface->row_pitch());
                     for (unsigned l = 0; l < kLanes; ++l)
                         offset[l] = static_cast<int32_t>(static_cast<uint32_t>(lanes.y[l]) * pitch +
-                                                         static_cast<uint32_t>(lanes.x[l]) * 4u);
+                                                         static_cast<uint32_t>(lanes.x[l]) * 4u * fmt.words);
                     // Side by side in one quad row (see kRowLane), all 16 pixels inside the surface?
                     bool run = lanes.quad_count == 4 && lanes.x[0] >= 0 && lanes.y[0] >= 0 &&
                                static_cast<uint32_t>(lanes.x[0]) + 8 <= width &&
