@@ -30,6 +30,9 @@ const Listing kListingTable[] = {
     {"000_program_2_1.vs.hlsl", "vmain", 4, 0},
     {"000_program_2_2.vs.hlsl", "vmain", 7, 0},
     {"000_program_2_3.vs.hlsl", "vmain", 26, 0},
+    // 9 before the loop, rep 3, a body of 23 instructions (nrm and pow 3 slots each) 27, endrep 2,
+    // 9 after (the spec's slot table, instructions.md).
+    {"000_program_2_4.vs.hlsl", "vmain", 50, 0},
     {"000_program_3_1.ps.hlsl", "PShader", 1, 0},
     {"000_program_3_2.vs.hlsl", "VShader", 12, 0},
     {"000_program_3_3.ps.hlsl", "PShader", 25, 0},
@@ -83,34 +86,14 @@ TEST(DocumentListings, EveryFileHasARow) {
 // at c[a0.x + m] after `mova a0.x, i * 4` (a T_LIGHT takes 4 registers). Run with chosen inputs in
 // cli_tests HlslFlow.Program24IndexesTheLightsWithTheLoopCounter.
 TEST(DocumentListings, Program24CompilesWithRelativeAddressing) {
-    const char* const source =
-        "struct T_LIGHT { float3 pos; float3 col_diff; float3 col_spec; float pn; };\n"
-        "int n_lights;\n"
-        "T_LIGHT lights[8];\n"
-        "float4x4 mxLocalToView;\n"
-        "float3 eye_pos;\n"
-        "struct T_VIN { float3 pos : TEXCOORD0; float3 n : TEXCOORD1; float3 col : TEXCOORD2; };\n"
-        "struct T_VOUT { float4 pos : POSITION; float3 col : COLOR0; };\n"
-        "T_VOUT vmain(T_VIN vin) {\n"
-        "  T_VOUT vout; int i; float3 eye, eye_rfl, light; float lp;\n"
-        "  vout.col = 0;\n"
-        "  eye = normalize(eye_pos - vin.pos);\n"
-        "  eye_rfl = reflect(eye, vin.n);\n"
-        "  for (i = 0; i < n_lights; i++) {\n"
-        "    light = normalize(lights[i].pos - vin.pos);\n"
-        "    lp = max(0, dot(vin.n, light));\n"
-        "    vout.col += lights[i].col_diff * lp;\n"
-        "    lp = max(0, pow(dot(eye_rfl, light), lights[i].pn));\n"
-        "    vout.col += lights[i].col_spec * lp;\n"
-        "  }\n"
-        "  vout.col *= vin.col;\n"
-        "  vout.pos = mul(mxLocalToView, float4(vin.pos, 1));\n"
-        "  return vout;\n"
-        "}\n";
+    std::ifstream in(kListings / "000_program_2_4.vs.hlsl");
+    ASSERT_TRUE(in);
+    std::stringstream source;
+    source << in.rdbuf();
     sm2::hlsl::CompileOptions options;
     options.entry_point = "vmain";
     options.stage = sm2::isa::ShaderType::Vertex;
-    const auto result = sm2::hlsl::compile(source, options);
+    const auto result = sm2::hlsl::compile(source.str(), options);
     ASSERT_TRUE(result.ok()) << (result.diagnostics.empty() ? std::string() : result.diagnostics[0].message);
     // The entry point's name is 5 letters: its inputs are still v0, v1, v2 (the interface list
     // after the name was once found only after names of 4n letters, and every input read v0).

@@ -258,37 +258,18 @@ TEST(HlslFlow, LoopCounterReadAsAValueIsAFloatTemp) {
     expect_near(run_output(vs, "--input v0=1,2,3,4 --int i0=0,0,0,0", "oPos"), {1, 2, 3, 4});
 }
 
-// The source document's Program 2.4 (000 l.1687): per-vertex Phong over n_lights lights, lights[i]
-// indexed by the loop counter: rep i0 with a float counter, each member read at c[a0.x + m] after
+// The source document's Program 2.4 (000 l.1687, samples/shaders/documents): per-vertex Phong
+// over n_lights lights, lights[i] indexed by the loop counter: rep i0 with a float counter, each member read at c[a0.x + m] after
 // mova a0.x, i * 4 (a T_LIGHT takes 4 registers: pos c0, col_diff c1, col_spec c2, pn c3.x).
 // Inputs: pos (0,0,0), n (0,0,1), col (1,1,1); eye_pos (0,0,1): eye = (0,0,1), eye_rfl = (0,0,-1).
 // Light 0 at (0,0,-2): light = (0,0,-1), diffuse max(0, -1) = 0, specular pow(1, 2) = 1: + col_spec0
 // = (0.25, 0.5, 0.125). Light 1 at (3,0,4): light = (0.6, 0, 0.8), diffuse 0.8 * (0.5, 0.25, 1)
 // = (0.4, 0.2, 0.8), col_spec1 = 0. Two lights: (0.65, 0.7, 0.925); one: (0.25, 0.5, 0.125).
 TEST(HlslFlow, Program24IndexesTheLightsWithTheLoopCounter) {
-    const std::string hlsl =
-        "struct T_LIGHT { float3 pos; float3 col_diff; float3 col_spec; float pn; };\n"
-        "int n_lights;\nT_LIGHT lights[8];\nfloat4x4 mxLocalToView;\nfloat3 eye_pos;\n"
-        "struct T_VIN { float3 pos : TEXCOORD0; float3 n : TEXCOORD1; float3 col : TEXCOORD2; };\n"
-        "struct T_VOUT { float4 pos : POSITION; float3 col : COLOR0; };\n"
-        "T_VOUT main(T_VIN vin) {\n"
-        "  T_VOUT vout; int i; float3 eye, eye_rfl, light; float lp;\n"
-        "  vout.col = 0;\n"
-        "  eye = normalize(eye_pos - vin.pos);\n"
-        "  eye_rfl = reflect(eye, vin.n);\n"
-        "  for (i = 0; i < n_lights; i++) {\n"
-        "    light = normalize(lights[i].pos - vin.pos);\n"
-        "    lp = max(0, dot(vin.n, light));\n"
-        "    vout.col += lights[i].col_diff * lp;\n"
-        "    lp = max(0, pow(dot(eye_rfl, light), lights[i].pn));\n"
-        "    vout.col += lights[i].col_spec * lp;\n"
-        "  }\n"
-        "  vout.col *= vin.col;\n"
-        "  vout.pos = mul(mxLocalToView, float4(vin.pos, 1));\n"
-        "  return vout;\n"
-        "}\n";
-    const auto vs = compile("program24", hlsl, "vs_2_0");
-    ASSERT_FALSE(vs.empty());
+    const std::string listing = std::string(SM2_SOURCE_DIR) + "/samples/shaders/documents/000_program_2_4.vs.hlsl";
+    const std::string vs = tmp("program24.bin");
+    const cli_support::Run compiled = sm2("compile " + listing + " -T vs_2_0 -E vmain -o " + vs);
+    ASSERT_EQ(compiled.status, 0) << compiled.err;
     const auto lines = disassembly(vs);
     EXPECT_TRUE(has_line(lines, "rep i0"));
     EXPECT_TRUE(std::any_of(lines.begin(), lines.end(), [](const std::string& l) { return l.find("c[a0.x + 1]") != std::string::npos; }));
