@@ -9,46 +9,12 @@
 #include <vector>
 
 #include "cli_support.h"
+#include "hlsl_support.h"
 
 using namespace cli_support;
+using namespace hlsl_support;
 
 namespace {
-
-// Compiles `hlsl` with `profile` into a bytecode file; fails the test (and returns "") on errors.
-std::string compile(const std::string& name, const std::string& hlsl, const std::string& profile,
-                    const std::string& extra = "") {
-    const std::string source = tmp(name + ".hlsl"), output = tmp(name + ".bin");
-    write_file(source, hlsl);
-    const cli_support::Run r = sm2("compile " + source + " -T " + profile + " -o " + output + " " + extra);
-    EXPECT_EQ(r.status, 0) << r.err;
-    return r.status == 0 ? output : std::string();
-}
-
-// The values `sm2 run` prints for one output register ("oC0 = 1 0.5 0.25 1").
-std::vector<float> output_of(const std::string& run_text, const std::string& reg) {
-    std::istringstream lines(run_text);
-    std::string line;
-    while (std::getline(lines, line)) {
-        if (line.rfind(reg + " = ", 0) != 0) continue;
-        std::istringstream values(line.substr(reg.size() + 3));
-        std::vector<float> out;
-        float f;
-        while (values >> f) out.push_back(f);
-        return out;
-    }
-    return {};
-}
-
-void expect_near(const std::vector<float>& actual, const std::vector<float>& expected, float tolerance = 1e-5f) {
-    ASSERT_EQ(actual.size(), expected.size());
-    for (size_t k = 0; k < expected.size(); ++k) EXPECT_NEAR(actual[k], expected[k], tolerance) << "component " << k;
-}
-
-std::vector<float> run_output(const std::string& shader, const std::string& args, const std::string& reg) {
-    const cli_support::Run r = sm2("run " + shader + " " + args);
-    EXPECT_EQ(r.status, 0) << r.err;
-    return output_of(r.out, reg);
-}
 
 // Per lane of `sm2 run --lanes`: "killed" for a lane texkill discarded, else oC0's values as printed.
 std::vector<std::string> lane_results(const std::string& shader, const std::string& csv, const std::string& args = "") {

@@ -10,18 +10,12 @@
 #include <vector>
 
 #include "cli_support.h"
+#include "hlsl_support.h"
 
 using namespace cli_support;
+using namespace hlsl_support;
 
 namespace {
-
-std::string compile(const std::string& name, const std::string& hlsl, const std::string& profile) {
-    const std::string source = tmp(name + ".hlsl"), output = tmp(name + ".bin");
-    write_file(source, hlsl);
-    const cli_support::Run r = sm2("compile " + source + " -T " + profile + " -o " + output);
-    EXPECT_EQ(r.status, 0) << r.err;
-    return r.status == 0 ? output : std::string();
-}
 
 // The error text of a compile that must fail (exit status 1).
 std::string compile_error(const std::string& name, const std::string& hlsl, const std::string& profile) {
@@ -54,26 +48,6 @@ bool has_line(const std::vector<std::string>& lines, const std::string& wanted) 
     for (const auto& line : lines)
         if (line == wanted) return true;
     return false;
-}
-
-std::vector<float> run_output(const std::string& shader, const std::string& args, const std::string& reg) {
-    const cli_support::Run r = sm2("run " + shader + " " + args);
-    EXPECT_EQ(r.status, 0) << r.err;
-    std::istringstream lines(r.out);
-    for (std::string line; std::getline(lines, line);) {
-        if (line.rfind(reg + " = ", 0) != 0) continue;
-        std::istringstream values(line.substr(reg.size() + 3));
-        std::vector<float> out;
-        for (float f; values >> f;) out.push_back(f);
-        return out;
-    }
-    ADD_FAILURE() << "no " << reg << " in: " << r.out;
-    return {};
-}
-
-void expect_near(const std::vector<float>& actual, const std::vector<float>& expected) {
-    ASSERT_EQ(actual.size(), expected.size());
-    for (size_t k = 0; k < expected.size(); ++k) EXPECT_NEAR(actual[k], expected[k], 1e-5f) << "component " << k;
 }
 
 constexpr const char* kIfElse =
