@@ -362,7 +362,7 @@ private:
     // Where the step reads and writes register `slot`: the function's own copy of a temporary,
     // the batch for every other register.
     llvm::Value* register_pointer(unsigned slot) {
-        if (slot >= slot::kTempFirst && slot < slot::kTempFirst + slot::kTempCount)
+        if (is_temp_slot(slot))
             return builder_->CreateConstInBoundsGEP2_32(temps_->getAllocatedType(), temps_, 0, slot - slot::kTempFirst);
         return batch_register(slot);
     }

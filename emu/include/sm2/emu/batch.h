@@ -53,6 +53,10 @@ static_assert(slot::kCount == kSlotCount, "executable.h and batch.h agree on the
                                                     unsigned index);
 // True for slots a shader writes as its results (oPos ... oDepth).
 [[nodiscard]] constexpr bool is_output_slot(unsigned s) { return s >= slot::kPosition && s < slot::kCount; }
+// True for the temporaries' slots (r0 ... r31).
+[[nodiscard]] constexpr bool is_temp_slot(unsigned s) {
+    return s >= slot::kTempFirst && s < slot::kTempFirst + slot::kTempCount;
+}
 
 template <typename Real>
 struct BasicBatch {
@@ -77,8 +81,7 @@ struct BasicBatch {
     // next stage. Temps and a0 start at 0 (reading them unwritten is invalid, but defined here).
     void reset() {
         for (unsigned s = 0; s < slot::kCount; ++s) {
-            const bool temp = s < slot::kTempFirst + slot::kTempCount;
-            for (unsigned c = 0; c < 4; ++c) registers[s][c].fill(!temp && c == 3 ? Real(1) : Real(0));
+            for (unsigned c = 0; c < 4; ++c) registers[s][c].fill(!is_temp_slot(s) && c == 3 ? Real(1) : Real(0));
         }
         for (auto& component : address) component.fill(0);
         killed = 0;
