@@ -1406,8 +1406,11 @@ SM2_AVX512 void block_sample(const Context& c, const BlockLevels& levels, const 
     // The LOD changes nothing when both filters agree and there are no mips to choose.
     const bool lod_matters = c.mip != Mip::None || c.mag != c.min;
     // The lengths are a function of their squares: a batch with the last batch's squares (every
-    // batch of a screen-aligned pass) skips the roots too.
-    if (!memo.valid || std::memcmp(memo.squares.data(), squares.data(), sizeof squares) != 0) {
+    // batch of a screen-aligned pass) skips the roots too. Where the LOD does not matter, every
+    // batch's choice is the same (the first level, the magnification filter), whatever its
+    // lengths: the memo's first one serves them all.
+    const bool stale = lod_matters ? std::memcmp(memo.squares.data(), squares.data(), sizeof squares) != 0 : false;
+    if (!memo.valid || stale) {
         memo.lengths = block_lengths(squares);
         block_choose_levels(c, lod_matters, memo.lengths, memo.l0, memo.l1, memo.frac, memo.linear);
         memo.squares = squares;
