@@ -1409,7 +1409,7 @@ SM2_AVX512 void block_sample(const Context& c, const BlockLevels& levels, const 
     // batch of a screen-aligned pass) skips the roots too. Where the LOD does not matter, every
     // batch's choice is the same (the first level, the magnification filter), whatever its
     // lengths: the memo's first one serves them all.
-    const bool stale = lod_matters ? std::memcmp(memo.squares.data(), squares.data(), sizeof squares) != 0 : false;
+    const bool stale = lod_matters && std::memcmp(memo.squares.data(), squares.data(), sizeof squares) != 0;
     if (!memo.valid || stale) {
         memo.lengths = block_lengths(squares);
         block_choose_levels(c, lod_matters, memo.lengths, memo.l0, memo.l1, memo.frac, memo.linear);
