@@ -180,7 +180,7 @@ Context make_context(const Texture& texture, const SamplerState& s, FilterPrecis
 // (format_layout.h): a UNORM field of up to 16 bits (decoded as the layout's v / (2^n - 1)), a
 // 32-bit float, or a constant 0 or 1 for a channel the format lacks.
 struct BlockChannel {
-    enum class Kind : uint8_t { Zero, One, Unorm, Float } kind = Kind::Zero;
+    enum class Kind : uint8_t { Zero, One, Unorm, Half, Float } kind = Kind::Zero;
     unsigned high = 0;   // 8-byte texels: 1 when the field lies in the second 32-bit word
     unsigned shift = 0;  // within its word
     uint32_t mask = 0;   // 2^n - 1 for Unorm
@@ -685,7 +685,8 @@ using BlockLevels = TextureSampler::BlockLevels;
 
 // The formats of 1-, 2-, 4- and 8-byte texels whose channels are all of those kinds, each
 // within one 32-bit word (A8R8G8B8, X8R8G8B8, A8B8G8R8, X8B8G8R8, A2B10G10R10, A2R10G10B10,
-// G16R16, R32F, R5G6B5, A4R4G4B4, A1R5G5B5, L8, A8L8, A8, L16, A16B16G16R16, G32R32F, ...).
+// G16R16, R32F, R5G6B5, A4R4G4B4, A1R5G5B5, L8, A8L8, A8, L16, A16B16G16R16, G32R32F, R16F, G16R16F,
+// A16B16G16R16F, ...).
 std::optional<BlockFormat> block_format(Format f) {
     const layout::Layout lay = layout::layout_of(f);
     const FormatInfo* info = format_info(f);
@@ -705,6 +706,13 @@ std::optional<BlockFormat> block_format(Format f) {
             b.shift = ch.shift % 32;
             b.mask = (1u << ch.bits) - 1u;
             b.max = static_cast<float>(b.mask);
+            break;
+        case layout::Type::Half:
+            if (ch.bits != 16 || ch.shift % 32 + 16 > 32) return std::nullopt;
+            b.kind = BlockChannel::Kind::Half;
+            b.high = ch.shift / 32;
+            b.shift = ch.shift % 32;
+            b.mask = 0xFFFFu;
             break;
         case layout::Type::Float:
             if (ch.shift % 32 != 0 || ch.bits != 32) return std::nullopt;
@@ -839,12 +847,30 @@ SM2_AVX512 inline __m512 block_field(__m512i texels, const BlockChannel& ch) {
     return _mm512_cvtepi32_ps(_mm512_and_si512(_mm512_srli_epi32(texels, ch.shift), mask));
 }
 
+// half_to_float() (half.h) of 16 binary16 values in the low halves of 32-bit lanes, bit for bit:
+// normal values rebiased, infinities and NaNs with their payload as it is (not quieted, as a
+// hardware conversion would), denormals as their exact value mantissa * 2^-24.
+SM2_AVX512 inline __m512 block_half(__m512i h) {
+    const __m512i magnitude = _mm512_and_si512(h, _mm512_set1_epi32(0x7FFF));
+    const __m512i sign = _mm512_slli_epi32(_mm512_and_si512(h, _mm512_set1_epi32(0x8000)), 16);
+    const __m512i shifted = _mm512_slli_epi32(magnitude, 13);
+    __m512i bits = _mm512_add_epi32(shifted, _mm512_set1_epi32(112 << 23));
+    const __mmask16 special = _mm512_cmpge_epu32_mask(magnitude, _mm512_set1_epi32(0x7C00));
+    bits = _mm512_mask_or_epi32(bits, special, shifted, _mm512_set1_epi32(0x7F800000));
+    const __mmask16 small = _mm512_cmplt_epu32_mask(magnitude, _mm512_set1_epi32(0x0400));
+    const __m512 tiny = _mm512_mul_ps(_mm512_cvtepi32_ps(magnitude), _mm512_set1_ps(0x1p-24f));
+    bits = _mm512_mask_mov_epi32(bits, small, _mm512_castps_si512(tiny));
+    return _mm512_castsi512_ps(_mm512_or_si512(bits, sign));
+}
+
 // Channel `ch` of 16 texels, as format_layout.h decodes it.
 SM2_AVX512 inline __m512 block_channel(__m512i texels, const BlockChannel& ch) {
     switch (ch.kind) {
     case BlockChannel::Kind::Zero: return _mm512_setzero_ps();
     case BlockChannel::Kind::One: return _mm512_set1_ps(1.0f);
     case BlockChannel::Kind::Float: return _mm512_castsi512_ps(texels);
+    case BlockChannel::Kind::Half:
+        return block_half(_mm512_and_si512(_mm512_srli_epi32(texels, ch.shift), _mm512_set1_epi32(0xFFFF)));
     case BlockChannel::Kind::Unorm: break;
     }
     const __m512i field = _mm512_and_si512(_mm512_srli_epi32(texels, ch.shift), _mm512_set1_epi32(static_cast<int32_t>(ch.mask)));

@@ -107,9 +107,10 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
                               Format::X8B8G8R8,  Format::A2B10G10R10, Format::A2R10G10B10, Format::G16R16,
                               Format::R32F,      Format::A4R4G4B4, Format::A1R5G5B5,  Format::L8,
                               Format::A8L8,      Format::A8,       Format::L16,       Format::R3G3B2,
-                              Format::A8R3G3B2,  Format::A16B16G16R16, Format::G32R32F};
+                              Format::A8R3G3B2,  Format::A16B16G16R16, Format::G32R32F, Format::R16F,
+                              Format::G16R16F,   Format::A16B16G16R16F};
     unsigned block_requests = 0, total = 0, volume_block_requests = 0, narrow_block_requests = 0, wide_block_requests = 0;
-    unsigned cube_block_requests = 0, anisotropic_block_requests = 0;
+    unsigned cube_block_requests = 0, anisotropic_block_requests = 0, half_block_requests = 0;
     for (unsigned round = 0; round < 450; ++round) {
         const Format format = formats[rng() % std::size(formats)];
         const bool pow2 = rng() % 4 != 0;
@@ -149,6 +150,8 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
                 narrow_block_requests += applies && narrow ? 1 : 0;
                 wide_block_requests += applies && wide ? 1 : 0;
                 cube_block_requests += applies && cube ? 1 : 0;
+                half_block_requests += applies && (format == Format::R16F || format == Format::G16R16F ||
+                                                   format == Format::A16B16G16R16F) ? 1 : 0;
                 anisotropic_block_requests +=
                     applies && state.min_filter == TextureFilter::Anisotropic && state.max_anisotropy > 1 ? 1 : 0;
                 // (R32F's random texels include NaNs; which NaN a sum of two gives depends on the
@@ -172,6 +175,7 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
         EXPECT_GT(wide_block_requests, total / 40);
         EXPECT_GT(cube_block_requests, total / 20);
         EXPECT_GT(anisotropic_block_requests, total / 20);
+        EXPECT_GT(half_block_requests, total / 40);
     }
 }
 
@@ -309,6 +313,52 @@ void expect_every_field_value(Format format, unsigned bits, unsigned shift, unsi
             const float expected = value / max;
             ASSERT_EQ(std::bit_cast<uint32_t>(texels[channel][l]), std::bit_cast<uint32_t>(expected))
                 << bits << "-bit value " << v;
+        }
+    }
+}
+
+// Every binary16 value of an R16F texture, POINT-sampled at its texel centre through the block
+// path, reads as its IEEE value: sign * mantissa * 2^-24 for denormals, sign * (1 + m / 1024) *
+// 2^(e - 15) otherwise, infinities as infinities, and NaNs with their payload as the texture holds
+// it (sign | 0x7F800000 | m << 13: the per-lane decoder's rule, not quieted).
+TEST(SamplerBlockPath, EveryHalfDecodesToItsValue) {
+    Texture t = Texture::create_2d(Format::R16F, 256, 256, 1);
+    auto& bytes = t.surface(0).bytes();
+    const size_t pitch = t.surface(0).row_pitch();
+    for (uint32_t h = 0; h < 65536; ++h) {
+        const auto half = static_cast<uint16_t>(h);
+        std::memcpy(bytes.data() + (h / 256) * pitch + (h % 256) * 2, &half, 2);
+    }
+    TextureSampler s;
+    s.set_texture(0, &t);
+    SamplerState st;
+    st.address_u = st.address_v = TextureAddress::Clamp;
+    st.mag_filter = st.min_filter = TextureFilter::Point;
+    st.mip_filter = TextureFilter::None;
+    s.set_state(0, st);
+    s.prepare();
+    if (cpu_has_avx512()) {
+        ASSERT_TRUE(s.block_path_applies(0));
+    }
+    for (uint32_t first = 0; first < 65536; first += emu::kBatchLanes) {
+        std::array<emu::FloatLanes, 4> coords{};
+        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+            coords[0][l] = (static_cast<float>((first + l) % 256) + 0.5f) / 256.0f;
+            coords[1][l] = (static_cast<float>((first + l) / 256) + 0.5f) / 256.0f;
+        }
+        emu::TextureRequest r;
+        r.coordinates = &coords;
+        std::array<emu::FloatLanes, 4> texels;
+        s.sample(r, texels);
+        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+            const uint32_t h = first + l, e = h >> 10 & 0x1Fu, m = h & 0x3FFu;
+            const float sign = h & 0x8000u ? -1.0f : 1.0f;
+            uint32_t expected;
+            if (e == 31 && m != 0) expected = (h & 0x8000u) << 16 | 0x7F800000u | m << 13;
+            else if (e == 31) expected = std::bit_cast<uint32_t>(sign * std::numeric_limits<float>::infinity());
+            else if (e == 0) expected = std::bit_cast<uint32_t>(sign * std::ldexp(static_cast<float>(m), -24));
+            else expected = std::bit_cast<uint32_t>(sign * std::ldexp(1.0f + static_cast<float>(m) / 1024.0f, static_cast<int>(e) - 15));
+            ASSERT_EQ(std::bit_cast<uint32_t>(texels[0][l]), expected) << "half 0x" << std::hex << h;
         }
     }
 }
