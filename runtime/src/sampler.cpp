@@ -180,11 +180,12 @@ Context make_context(const Texture& texture, const SamplerState& s, FilterPrecis
 // (format_layout.h): a UNORM field of up to 16 bits (decoded as the layout's v / (2^n - 1)), a
 // 32-bit float, or a constant 0 or 1 for a channel the format lacks.
 struct BlockChannel {
-    enum class Kind : uint8_t { Zero, One, Unorm, Half, Float } kind = Kind::Zero;
+    enum class Kind : uint8_t { Zero, One, Unorm, Snorm, Half, Float } kind = Kind::Zero;
     unsigned high = 0;   // 8-byte texels: 1 when the field lies in the second 32-bit word
     unsigned shift = 0;  // within its word
+    unsigned bits = 0;   // the field's width (Unorm, Snorm)
     uint32_t mask = 0;   // 2^n - 1 for Unorm
-    float max = 1.0f;    // float(2^n - 1)
+    float max = 1.0f;    // float(2^n - 1); Snorm: float(2^(n-1) - 1)
 };
 using BlockFormat = std::array<BlockChannel, 4>;
 
@@ -686,7 +687,7 @@ using BlockLevels = TextureSampler::BlockLevels;
 // The formats of 1-, 2-, 4- and 8-byte texels whose channels are all of those kinds, each
 // within one 32-bit word (A8R8G8B8, X8R8G8B8, A8B8G8R8, X8B8G8R8, A2B10G10R10, A2R10G10B10,
 // G16R16, R32F, R5G6B5, A4R4G4B4, A1R5G5B5, L8, A8L8, A8, L16, A16B16G16R16, G32R32F, R16F, G16R16F,
-// A16B16G16R16F, ...).
+// A16B16G16R16F, the signed V8U8, L6V5U5, X8L8V8U8, Q8W8V8U8, V16U16, A2W10V10U10, Q16W16V16U16).
 std::optional<BlockFormat> block_format(Format f) {
     const layout::Layout lay = layout::layout_of(f);
     const FormatInfo* info = format_info(f);
@@ -704,8 +705,17 @@ std::optional<BlockFormat> block_format(Format f) {
             b.kind = BlockChannel::Kind::Unorm;
             b.high = ch.shift / 32;
             b.shift = ch.shift % 32;
+            b.bits = ch.bits;
             b.mask = (1u << ch.bits) - 1u;
             b.max = static_cast<float>(b.mask);
+            break;
+        case layout::Type::Snorm:
+            if (ch.bits < 2 || ch.bits > 16 || ch.shift % 32 + ch.bits > 32) return std::nullopt;
+            b.kind = BlockChannel::Kind::Snorm;
+            b.high = ch.shift / 32;
+            b.shift = ch.shift % 32;
+            b.bits = ch.bits;
+            b.max = static_cast<float>((1u << (ch.bits - 1)) - 1u);
             break;
         case layout::Type::Half:
             if (ch.bits != 16 || ch.shift % 32 + 16 > 32) return std::nullopt;
@@ -871,6 +881,14 @@ SM2_AVX512 inline __m512 block_channel(__m512i texels, const BlockChannel& ch) {
     case BlockChannel::Kind::Float: return _mm512_castsi512_ps(texels);
     case BlockChannel::Kind::Half:
         return block_half(_mm512_and_si512(_mm512_srli_epi32(texels, ch.shift), _mm512_set1_epi32(0xFFFF)));
+    case BlockChannel::Kind::Snorm: {
+        // The field sign-extended, s / (2^(n-1) - 1) (the quotient is odd in s, so correctly
+        // rounded for negative s too), below -1 (s = -2^(n-1)) clamped to -1.
+        const __m512i field = _mm512_srai_epi32(_mm512_slli_epi32(texels, 32 - ch.shift - ch.bits), 32 - ch.bits);
+        const __m512 q = unorm8::quotient(_mm512_cvtepi32_ps(field), ch.max);
+        const __m512 minus_one = _mm512_set1_ps(-1.0f);
+        return _mm512_mask_mov_ps(q, _mm512_cmp_ps_mask(q, minus_one, _CMP_LT_OQ), minus_one);
+    }
     case BlockChannel::Kind::Unorm: break;
     }
     const __m512i field = _mm512_and_si512(_mm512_srli_epi32(texels, ch.shift), _mm512_set1_epi32(static_cast<int32_t>(ch.mask)));

@@ -108,9 +108,11 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
                               Format::R32F,      Format::A4R4G4B4, Format::A1R5G5B5,  Format::L8,
                               Format::A8L8,      Format::A8,       Format::L16,       Format::R3G3B2,
                               Format::A8R3G3B2,  Format::A16B16G16R16, Format::G32R32F, Format::R16F,
-                              Format::G16R16F,   Format::A16B16G16R16F};
+                              Format::G16R16F,   Format::A16B16G16R16F, Format::V8U8, Format::L6V5U5,
+                              Format::X8L8V8U8,  Format::Q8W8V8U8, Format::V16U16, Format::A2W10V10U10,
+                              Format::Q16W16V16U16};
     unsigned block_requests = 0, total = 0, volume_block_requests = 0, narrow_block_requests = 0, wide_block_requests = 0;
-    unsigned cube_block_requests = 0, anisotropic_block_requests = 0, half_block_requests = 0;
+    unsigned cube_block_requests = 0, anisotropic_block_requests = 0, half_block_requests = 0, signed_block_requests = 0;
     for (unsigned round = 0; round < 450; ++round) {
         const Format format = formats[rng() % std::size(formats)];
         const bool pow2 = rng() % 4 != 0;
@@ -152,6 +154,10 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
                 cube_block_requests += applies && cube ? 1 : 0;
                 half_block_requests += applies && (format == Format::R16F || format == Format::G16R16F ||
                                                    format == Format::A16B16G16R16F) ? 1 : 0;
+                const bool is_signed = format == Format::V8U8 || format == Format::L6V5U5 || format == Format::X8L8V8U8 ||
+                                       format == Format::Q8W8V8U8 || format == Format::V16U16 ||
+                                       format == Format::A2W10V10U10 || format == Format::Q16W16V16U16;
+                signed_block_requests += applies && is_signed ? 1 : 0;
                 anisotropic_block_requests +=
                     applies && state.min_filter == TextureFilter::Anisotropic && state.max_anisotropy > 1 ? 1 : 0;
                 // (R32F's random texels include NaNs; which NaN a sum of two gives depends on the
@@ -176,6 +182,7 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
         EXPECT_GT(cube_block_requests, total / 20);
         EXPECT_GT(anisotropic_block_requests, total / 20);
         EXPECT_GT(half_block_requests, total / 40);
+        EXPECT_GT(signed_block_requests, total / 40);
     }
 }
 
@@ -361,6 +368,56 @@ TEST(SamplerBlockPath, EveryHalfDecodesToItsValue) {
             ASSERT_EQ(std::bit_cast<uint32_t>(texels[0][l]), expected) << "half 0x" << std::hex << h;
         }
     }
+}
+
+// Every value of a signed (two's complement) field, POINT-sampled through the block path, reads as
+// D3D9's SNORM rule: s / (2^(n-1) - 1) as IEEE division gives it, and -1 for s = -2^(n-1).
+// V8U8's U (8 bits) and V16U16's U (16 bits), each value once.
+void expect_every_signed_value(Format format, unsigned bits) {
+    const uint32_t count = 1u << bits, width = std::min(count, 256u), height = count / width;
+    const unsigned bytes_per_texel = format_info(format)->bytes;
+    Texture t = Texture::create_2d(format, width, height, 1);
+    auto& bytes = t.surface(0).bytes();
+    const size_t pitch = t.surface(0).row_pitch();
+    for (uint32_t v = 0; v < count; ++v)
+        std::memcpy(bytes.data() + (v / width) * pitch + (v % width) * bytes_per_texel, &v, bits / 8);
+    TextureSampler s;
+    s.set_texture(0, &t);
+    SamplerState st;
+    st.address_u = st.address_v = TextureAddress::Clamp;
+    st.mag_filter = st.min_filter = TextureFilter::Point;
+    st.mip_filter = TextureFilter::None;
+    s.set_state(0, st);
+    s.prepare();
+    if (cpu_has_avx512()) {
+        ASSERT_TRUE(s.block_path_applies(0)) << bits << " bits";
+    }
+    const float max = static_cast<float>((1u << (bits - 1)) - 1u);
+    for (uint32_t first = 0; first < count; first += emu::kBatchLanes) {
+        std::array<emu::FloatLanes, 4> coords{};
+        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+            const uint32_t v = std::min(first + l, count - 1);
+            coords[0][l] = (static_cast<float>(v % width) + 0.5f) / static_cast<float>(width);
+            coords[1][l] = (static_cast<float>(v / width) + 0.5f) / static_cast<float>(height);
+        }
+        emu::TextureRequest r;
+        r.coordinates = &coords;
+        std::array<emu::FloatLanes, 4> texels;
+        s.sample(r, texels);
+        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+            const uint32_t v = std::min(first + l, count - 1);
+            const int32_t signed_value = v >= count / 2 ? static_cast<int32_t>(v) - static_cast<int32_t>(count) : static_cast<int32_t>(v);
+            volatile float value = static_cast<float>(signed_value);
+            const float expected = signed_value == -static_cast<int32_t>(count / 2) ? -1.0f : value / max;
+            ASSERT_EQ(std::bit_cast<uint32_t>(texels[0][l]), std::bit_cast<uint32_t>(expected))
+                << bits << "-bit value " << signed_value;
+        }
+    }
+}
+
+TEST(SamplerBlockPath, EverySignedFieldValueDecodesAsTheDivision) {
+    expect_every_signed_value(Format::V8U8, 8);
+    expect_every_signed_value(Format::V16U16, 16);
 }
 
 TEST(SamplerBlockPath, EveryUnorm8ByteDecodesAsTheDivision) {
