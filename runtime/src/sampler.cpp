@@ -667,8 +667,8 @@ QuadLookups quad_lookups(const Context& c, const emu::TextureRequest& request, u
 // ---------------------------------------------------------------------------------------------
 // 16 lanes at once: 2D, volume and cube lookups on textures whose texels are 1, 2, 4 or 8 bytes
 // of UNORM or 32-bit float fields (block_format()), POINT or LINEAR filtering, anisotropic
-// included (block_sample_anisotropic()), WRAP (power-of-two levels), CLAMP or BORDER
-// addressing, no sRGB, no DXTn: what most draws sample. It is filter_level() and the level blend of
+// included (block_sample_anisotropic()), CLAMP, BORDER, MIRRORONCE, and WRAP or MIRROR on
+// power-of-two levels, no sRGB, no DXTn: what most draws sample. It is filter_level() and the level blend of
 // lookup() evaluated in AVX-512 registers with the same operations in the same order (IEEE
 // results are the same whatever the vector width), so its texels are bit for bit those of the
 // per-lane path; tests/runtime/sampler_block_test.cpp holds the two equal. The level of detail
@@ -736,7 +736,8 @@ std::optional<BlockFormat> block_format(Format f) {
 }
 
 bool block_address_supported(TextureAddress mode, bool all_pow2) {
-    return mode == TextureAddress::Clamp || mode == TextureAddress::Border || (mode == TextureAddress::Wrap && all_pow2);
+    return mode == TextureAddress::Clamp || mode == TextureAddress::Border || mode == TextureAddress::MirrorOnce ||
+           ((mode == TextureAddress::Wrap || mode == TextureAddress::Mirror) && all_pow2);
 }
 
 // Whether the 16-lane path covers this context; fills the level tables.
@@ -813,11 +814,26 @@ struct BlockTaps {
     __mmask16 outside0 = 0, outside1 = 0;
 };
 
+// address() for 16 lanes: CLAMP, BORDER (the clamped index; block_outside() marks the lanes),
+// MIRRORONCE, and WRAP and MIRROR on power-of-two sizes.
 SM2_AVX512 inline __m512i block_address(TextureAddress mode, __m512i i, __m512i n) {
     const __m512i last = _mm512_sub_epi32(n, _mm512_set1_epi32(1));
-    if (mode == TextureAddress::Clamp || mode == TextureAddress::Border)
-        return _mm512_max_epi32(_mm512_min_epi32(i, last), _mm512_setzero_si512());
-    return _mm512_and_si512(i, last);  // WRAP on a power of two
+    switch (mode) {
+    case TextureAddress::Clamp:
+    case TextureAddress::Border: return _mm512_max_epi32(_mm512_min_epi32(i, last), _mm512_setzero_si512());
+    case TextureAddress::MirrorOnce: {
+        // -1 - i for negative i (its bitwise complement), then clamped to n - 1.
+        const __m512i j = _mm512_mask_mov_epi32(i, _mm512_cmplt_epi32_mask(i, _mm512_setzero_si512()),
+                                                _mm512_xor_si512(i, _mm512_set1_epi32(-1)));
+        return _mm512_min_epi32(j, last);
+    }
+    case TextureAddress::Mirror: {
+        const __m512i period = _mm512_add_epi32(last, n);  // 2n - 1
+        const __m512i j = _mm512_and_si512(i, period);
+        return _mm512_mask_sub_epi32(j, _mm512_cmpge_epi32_mask(j, n), period, j);
+    }
+    default: return _mm512_and_si512(i, last);  // WRAP on a power of two
+    }
 }
 
 SM2_AVX512 inline __mmask16 block_outside(TextureAddress mode, __m512i i, __m512i n) {

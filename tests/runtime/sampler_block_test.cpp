@@ -47,14 +47,15 @@ float special_or(std::mt19937& rng, float ordinary) {
 }
 
 SamplerState random_state(std::mt19937& rng) {
-    static constexpr TextureAddress kModes[] = {TextureAddress::Wrap, TextureAddress::Clamp, TextureAddress::Wrap,
-                                                TextureAddress::Clamp, TextureAddress::Mirror, TextureAddress::Border};
+    static constexpr TextureAddress kModes[] = {TextureAddress::Wrap,   TextureAddress::Clamp,  TextureAddress::Wrap,
+                                                TextureAddress::Clamp,  TextureAddress::Mirror, TextureAddress::Border,
+                                                TextureAddress::MirrorOnce};
     static constexpr TextureFilter kFilters[] = {TextureFilter::Point, TextureFilter::Linear, TextureFilter::Linear,
                                                  TextureFilter::None, TextureFilter::Anisotropic};
     SamplerState s;
-    s.address_u = kModes[rng() % 6];
-    s.address_v = kModes[rng() % 6];
-    s.address_w = kModes[rng() % 6];
+    s.address_u = kModes[rng() % std::size(kModes)];
+    s.address_v = kModes[rng() % std::size(kModes)];
+    s.address_w = kModes[rng() % std::size(kModes)];
     s.mag_filter = kFilters[rng() % 4];
     s.min_filter = kFilters[rng() % 5];
     s.mip_filter = kFilters[rng() % 4];
