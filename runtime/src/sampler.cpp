@@ -668,7 +668,7 @@ QuadLookups quad_lookups(const Context& c, const emu::TextureRequest& request, u
 // 16 lanes at once: 2D, volume and cube lookups on textures whose texels are 1, 2, 4 or 8 bytes
 // of UNORM or 32-bit float fields (block_format()), POINT or LINEAR filtering, anisotropic
 // included (block_sample_anisotropic()), CLAMP, BORDER, MIRRORONCE, and WRAP or MIRROR on
-// power-of-two levels, no sRGB, no DXTn: what most draws sample. It is filter_level() and the level blend of
+// power-of-two levels, sRGB reads, no DXTn: what most draws sample. It is filter_level() and the level blend of
 // lookup() evaluated in AVX-512 registers with the same operations in the same order (IEEE
 // results are the same whatever the vector width), so its texels are bit for bit those of the
 // per-lane path; tests/runtime/sampler_block_test.cpp holds the two equal. The level of detail
@@ -742,7 +742,7 @@ bool block_address_supported(TextureAddress mode, bool all_pow2) {
 
 // Whether the 16-lane path covers this context; fills the level tables.
 bool block_supported(const Context& c, BlockLevels& levels) {
-    if (c.dxt || c.srgb) return false;
+    if (c.dxt) return false;
     const std::optional<BlockFormat> format = block_format(c.format);
     if (!format) return false;
     levels.format = *format;
@@ -911,10 +911,21 @@ SM2_AVX512 inline __m512 block_channel(__m512i texels, const BlockChannel& ch) {
     return unorm8::quotient(_mm512_cvtepi32_ps(field), ch.max);
 }
 
-// Channel k of 16 taps, BORDERCOLOR's channel k on the lanes of `outside`.
+// fetch()'s sRGB read of a colour channel: the table's entry for the decoded 8-bit value,
+// index clamp(value, 0, 1) * 255 + 0.5 truncated.
+SM2_AVX512 inline __m512 block_srgb(const Context& c, __m512 value) {
+    const __m512 unit = _mm512_min_ps(_mm512_max_ps(value, _mm512_setzero_ps()), _mm512_set1_ps(1.0f));
+    const __m512i index =
+        _mm512_cvttps_epi32(_mm512_add_ps(_mm512_mul_ps(unit, _mm512_set1_ps(255.0f)), _mm512_set1_ps(0.5f)));
+    return _mm512_i32gather_ps(index, c.srgb_table->data(), 4);
+}
+
+// Channel k of 16 taps (sRGB-decoded where the stage reads sRGB), BORDERCOLOR's channel k on
+// the lanes of `outside`.
 SM2_AVX512 inline __m512 block_tap(const Context& c, __m512i texels, const BlockChannel& ch, unsigned k,
                                    __mmask16 outside) {
-    const __m512 value = block_channel(texels, ch);
+    __m512 value = block_channel(texels, ch);
+    if (c.srgb && k < 3) value = block_srgb(c, value);
     return outside ? _mm512_mask_mov_ps(value, outside, _mm512_set1_ps(c.border[k])) : value;
 }
 
@@ -1118,7 +1129,7 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
     const auto bordered = static_cast<__mmask16>(o00 | o10 | o01 | o11);
     for (unsigned k = 0; k < 4; ++k) {
         const BlockChannel& ch = format[k];
-        const bool exact = c.fixed && ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 0xFFu;
+        const bool exact = c.fixed && !c.srgb && ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 0xFFu;
         __m512 exact_sum = _mm512_setzero_ps();
         if (exact) {
             const __m512 top = _mm512_fmadd_ps(block_field(tap_word(q, 1, ch.high), ch), ax, _mm512_mul_ps(block_field(tap_word(q, 0, ch.high), ch), bxi));

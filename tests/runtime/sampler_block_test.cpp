@@ -63,6 +63,7 @@ SamplerState random_state(std::mt19937& rng) {
     s.mip_lod_bias = rng() % 3 == 0 ? static_cast<float>(static_cast<int>(rng() % 400) - 200) / 64.0f : 0.0f;
     s.max_anisotropy = rng() % 2 ? 1 + rng() % 4 : 1 + rng() % 16;
     s.border_color = static_cast<uint32_t>(rng());
+    s.srgb_texture = rng() % 4 == 0;  // honoured by the 8-bit RGB formats only
     return s;
 }
 
@@ -114,6 +115,7 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
                               Format::Q16W16V16U16};
     unsigned block_requests = 0, total = 0, volume_block_requests = 0, narrow_block_requests = 0, wide_block_requests = 0;
     unsigned cube_block_requests = 0, anisotropic_block_requests = 0, half_block_requests = 0, signed_block_requests = 0;
+    unsigned srgb_block_requests = 0;
     for (unsigned round = 0; round < 450; ++round) {
         const Format format = formats[rng() % std::size(formats)];
         const bool pow2 = rng() % 4 != 0;
@@ -159,6 +161,7 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
                                        format == Format::Q8W8V8U8 || format == Format::V16U16 ||
                                        format == Format::A2W10V10U10 || format == Format::Q16W16V16U16;
                 signed_block_requests += applies && is_signed ? 1 : 0;
+                srgb_block_requests += applies && state.srgb_texture && format_info(format)->srgb ? 1 : 0;
                 anisotropic_block_requests +=
                     applies && state.min_filter == TextureFilter::Anisotropic && state.max_anisotropy > 1 ? 1 : 0;
                 // (R32F's random texels include NaNs; which NaN a sum of two gives depends on the
@@ -184,6 +187,7 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
         EXPECT_GT(anisotropic_block_requests, total / 20);
         EXPECT_GT(half_block_requests, total / 40);
         EXPECT_GT(signed_block_requests, total / 40);
+        EXPECT_GT(srgb_block_requests, total / 100);
     }
 }
 
