@@ -335,6 +335,9 @@ __mmask8 row_mask(emu::LaneMask lanes, unsigned row) {
     return static_cast<__mmask8>(m);
 }
 
+// Words: 1 or 2 32-bit words a texel, a compile-time constant so that the 4-byte formats' code
+// carries nothing of the 8-byte ones.
+template <unsigned Words>
 SM2_AVX512 void merge_unorm8_avx512(const BlendState& b, const Unorm8Texel& fmt, Surface& surface, uint32_t mask,
                                     const Rgba<Lanes>& src, const std::array<int32_t, kLanes>& offset,
                                     int64_t row_run, emu::LaneMask write) {
@@ -350,29 +353,31 @@ SM2_AVX512 void merge_unorm8_avx512(const BlendState& b, const Unorm8Texel& fmt,
     std::byte* const run1 = run0 + surface.row_pitch();
     // 8-byte texels: a row is 8 qwords; lane l's low word is dword 2 * column (+ 16 for row 1)
     // of the two rows, its high word the next.
-    const bool two = fmt.words == 2;
+    constexpr bool two = Words == 2;
     const __m512i from_rows_low = _mm512_setr_epi32(0, 2, 16, 18, 4, 6, 20, 22, 8, 10, 24, 26, 12, 14, 28, 30);
     const __m512i from_rows_high = _mm512_add_epi32(from_rows_low, _mm512_set1_epi32(1));
     const __m512i word1 = _mm512_add_epi32(where, _mm512_set1_epi32(4));
     __m512 dst[4] = {}, out[4];
     if (b.enable || mask != 0xF) {
-        __m512i stored[2] = {_mm512_setzero_si512(), _mm512_setzero_si512()};
+        // The two words as two values (an array indexed by the channel's word at run time would
+        // keep them in memory).
+        __m512i stored0 = _mm512_setzero_si512(), stored1 = _mm512_setzero_si512();
         if (row_run >= 0 && two) {
             const __m512i r0 = _mm512_maskz_loadu_epi64(row0, run0), r1 = _mm512_maskz_loadu_epi64(row1, run1);
-            stored[0] = _mm512_maskz_permutex2var_epi32(lanes, r0, from_rows_low, r1);
-            stored[1] = _mm512_maskz_permutex2var_epi32(lanes, r0, from_rows_high, r1);
+            stored0 = _mm512_maskz_permutex2var_epi32(lanes, r0, from_rows_low, r1);
+            stored1 = _mm512_maskz_permutex2var_epi32(lanes, r0, from_rows_high, r1);
         } else if (row_run >= 0) {
             const __m512i r0 = _mm512_castsi256_si512(_mm256_maskz_loadu_epi32(row0, run0));
             const __m512i r1 = _mm512_castsi256_si512(_mm256_maskz_loadu_epi32(row1, run1));
-            stored[0] = _mm512_maskz_permutex2var_epi32(lanes, r0, from_rows, r1);
+            stored0 = _mm512_maskz_permutex2var_epi32(lanes, r0, from_rows, r1);
         } else {
-            stored[0] = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, where, bytes, 1);
-            if (two) stored[1] = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, word1, bytes, 1);
+            stored0 = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, where, bytes, 1);
+            if (two) stored1 = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, word1, bytes, 1);
         }
         for (unsigned c = 0; c < 4; ++c)
             dst[c] = fmt.shift[c] < 0 ? _mm512_set1_ps(fmt.missing[c])
-                                      : unorm8::decode_field(stored[fmt.shift[c] / 32], static_cast<unsigned>(fmt.shift[c] % 32),
-                                                             fmt.mask[c]);
+                                      : unorm8::decode_field(two && fmt.shift[c] >= 32 ? stored1 : stored0,
+                                                             static_cast<unsigned>(fmt.shift[c] % 32), fmt.mask[c]);
     }
     for (unsigned c = 0; c < 4; ++c) out[c] = saturate16(_mm512_loadu_ps(src[c].v.data()));
     if (b.enable) {
@@ -393,29 +398,30 @@ SM2_AVX512 void merge_unorm8_avx512(const BlendState& b, const Unorm8Texel& fmt,
         }
     }
     // out and dst are in [0, 1].
-    __m512i packed[2] = {_mm512_setzero_si512(), _mm512_setzero_si512()};
+    __m512i packed0 = _mm512_setzero_si512(), packed1 = _mm512_setzero_si512();
     for (unsigned c = 0; c < 4; ++c) {
         if (fmt.shift[c] < 0) continue;
         // A masked channel stores what it read (which encodes back to the same byte).
         const __m512 value = mask >> c & 1u ? out[c] : dst[c];
-        __m512i& word = packed[fmt.shift[c] / 32];
-        word = _mm512_or_si512(word, _mm512_slli_epi32(unorm8::encode(value, static_cast<double>(fmt.mask[c])),
-                                                       static_cast<unsigned>(fmt.shift[c] % 32)));
+        const __m512i field = _mm512_slli_epi32(unorm8::encode(value, static_cast<double>(fmt.mask[c])),
+                                                static_cast<unsigned>(fmt.shift[c] % 32));
+        if (two && fmt.shift[c] >= 32) packed1 = _mm512_or_si512(packed1, field);
+        else packed0 = _mm512_or_si512(packed0, field);
     }
     if (row_run >= 0 && two) {
         // Row r's qword j: lane kRowLane[r][j]'s low word, then its high word.
         const __m512i qwords_row0 = _mm512_setr_epi32(0, 16, 1, 17, 4, 20, 5, 21, 8, 24, 9, 25, 12, 28, 13, 29);
         const __m512i qwords_row1 = _mm512_setr_epi32(2, 18, 3, 19, 6, 22, 7, 23, 10, 26, 11, 27, 14, 30, 15, 31);
-        _mm512_mask_storeu_epi64(run0, row0, _mm512_permutex2var_epi32(packed[0], qwords_row0, packed[1]));
-        _mm512_mask_storeu_epi64(run1, row1, _mm512_permutex2var_epi32(packed[0], qwords_row1, packed[1]));
+        _mm512_mask_storeu_epi64(run0, row0, _mm512_permutex2var_epi32(packed0, qwords_row0, packed1));
+        _mm512_mask_storeu_epi64(run1, row1, _mm512_permutex2var_epi32(packed0, qwords_row1, packed1));
     } else if (two) {
-        _mm512_mask_i32scatter_epi32(bytes, lanes, where, packed[0], 1);
-        _mm512_mask_i32scatter_epi32(bytes, lanes, word1, packed[1], 1);
+        _mm512_mask_i32scatter_epi32(bytes, lanes, where, packed0, 1);
+        _mm512_mask_i32scatter_epi32(bytes, lanes, word1, packed1, 1);
     } else if (row_run >= 0) {
-        _mm256_mask_storeu_epi32(run0, row0, _mm512_castsi512_si256(_mm512_permutexvar_epi32(to_row0, packed[0])));
-        _mm256_mask_storeu_epi32(run1, row1, _mm512_castsi512_si256(_mm512_permutexvar_epi32(to_row1, packed[0])));
+        _mm256_mask_storeu_epi32(run0, row0, _mm512_castsi512_si256(_mm512_permutexvar_epi32(to_row0, packed0)));
+        _mm256_mask_storeu_epi32(run1, row1, _mm512_castsi512_si256(_mm512_permutexvar_epi32(to_row1, packed0)));
     } else {
-        _mm512_mask_i32scatter_epi32(bytes, lanes, where, packed[0], 1);
+        _mm512_mask_i32scatter_epi32(bytes, lanes, where, packed0, 1);
     }
 }
 
@@ -596,7 +602,8 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
                     for (unsigned q = 1; q < 4; ++q)
                         run = run && lanes.x[4 * q] == lanes.x[0] + static_cast<int32_t>(2 * q) && lanes.y[4 * q] == lanes.y[0];
                     const int64_t row_run = run ? static_cast<int64_t>(offset[0]) : -1;
-                    merge_unorm8_avx512(s.blend, fmt, *surface, mask, src, offset, row_run, write);
+                    if (fmt.words == 2) merge_unorm8_avx512<2>(s.blend, fmt, *surface, mask, src, offset, row_run, write);
+                    else merge_unorm8_avx512<1>(s.blend, fmt, *surface, mask, src, offset, row_run, write);
                     continue;
                 }
                 std::array<size_t, kLanes> offset;  // used for the lanes in `write` only
