@@ -284,17 +284,20 @@ TEST(SamplerBlockPath, BilinearCentreOfA2x2Texture) {
     }
 }
 
-// The block path decodes UNORM fields without a division (a reciprocal product corrected by its
-// residual): every value of a field must read exactly v / (2^n - 1) as IEEE division gives it.
-// A texture holding each value of the field once, POINT-sampled at its texel centres.
-void expect_every_field_value(Format format, unsigned bits, unsigned shift, unsigned channel) {
-    const uint32_t count = 1u << bits, width = std::min(count, 4096u), height = count / width;
+// A texture of `count` texels, `width` a row, texel v holding texel(v) in its bytes, POINT-
+// sampled at every texel centre (the block path where the CPU has AVX-512): channel `channel`
+// of texel v must read with the bits expected(v).
+template <typename TexelOf, typename ExpectedOf>
+void expect_every_texel(Format format, uint32_t count, uint32_t width, unsigned channel, TexelOf texel_of,
+                        ExpectedOf expected_of) {
+    const uint32_t height = count / width;
+    const unsigned texel_bytes = format_info(format)->bytes;
     Texture t = Texture::create_2d(format, width, height, 1);
     auto& bytes = t.surface(0).bytes();
     const size_t pitch = t.surface(0).row_pitch();
     for (uint32_t v = 0; v < count; ++v) {
-        const uint32_t texel = v << shift;
-        std::memcpy(bytes.data() + (v / width) * pitch + (v % width) * 4, &texel, 4);
+        const uint32_t texel = texel_of(v);
+        std::memcpy(bytes.data() + (v / width) * pitch + (v % width) * texel_bytes, &texel, texel_bytes);
     }
     TextureSampler s;
     s.set_texture(0, &t);
@@ -305,119 +308,64 @@ void expect_every_field_value(Format format, unsigned bits, unsigned shift, unsi
     s.set_state(0, st);
     s.prepare();
     if (cpu_has_avx512()) {
-        ASSERT_TRUE(s.block_path_applies(0)) << bits << " bits";
+        ASSERT_TRUE(s.block_path_applies(0)) << format_info(format)->name;
     }
+    for (uint32_t first = 0; first < count; first += emu::kBatchLanes) {
+        std::array<emu::FloatLanes, 4> coords{};
+        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+            const uint32_t v = std::min(first + l, count - 1);
+            coords[0][l] = (static_cast<float>(v % width) + 0.5f) / static_cast<float>(width);
+            coords[1][l] = (static_cast<float>(v / width) + 0.5f) / static_cast<float>(height);
+        }
+        emu::TextureRequest r;
+        r.coordinates = &coords;
+        std::array<emu::FloatLanes, 4> texels;
+        s.sample(r, texels);
+        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+            const uint32_t v = std::min(first + l, count - 1);
+            ASSERT_EQ(std::bit_cast<uint32_t>(texels[channel][l]), expected_of(v))
+                << format_info(format)->name << " texel value 0x" << std::hex << texel_of(v);
+        }
+    }
+}
+
+// The block path decodes UNORM fields without a division (a reciprocal product corrected by its
+// residual): every value of a field must read exactly v / (2^n - 1) as IEEE division gives it.
+void expect_every_field_value(Format format, unsigned bits, unsigned shift, unsigned channel) {
+    const uint32_t count = 1u << bits;
     const float max = static_cast<float>(count - 1);
-    for (uint32_t first = 0; first < count; first += emu::kBatchLanes) {
-        std::array<emu::FloatLanes, 4> coords{};
-        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-            const uint32_t v = std::min(first + l, count - 1);
-            coords[0][l] = (static_cast<float>(v % width) + 0.5f) / static_cast<float>(width);
-            coords[1][l] = (static_cast<float>(v / width) + 0.5f) / static_cast<float>(height);
-        }
-        emu::TextureRequest r;
-        r.coordinates = &coords;
-        std::array<emu::FloatLanes, 4> texels;
-        s.sample(r, texels);
-        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-            const uint32_t v = std::min(first + l, count - 1);
-            volatile float value = static_cast<float>(v);
-            const float expected = value / max;
-            ASSERT_EQ(std::bit_cast<uint32_t>(texels[channel][l]), std::bit_cast<uint32_t>(expected))
-                << bits << "-bit value " << v;
-        }
-    }
+    expect_every_texel(format, count, std::min(count, 4096u), channel, [&](uint32_t v) { return v << shift; },
+                       [&](uint32_t v) {
+                           volatile float value = static_cast<float>(v);
+                           return std::bit_cast<uint32_t>(value / max);
+                       });
 }
 
-// Every binary16 value of an R16F texture, POINT-sampled at its texel centre through the block
-// path, reads as its IEEE value: sign * mantissa * 2^-24 for denormals, sign * (1 + m / 1024) *
-// 2^(e - 15) otherwise, infinities as infinities, and NaNs with their payload as the texture holds
-// it (sign | 0x7F800000 | m << 13: the per-lane decoder's rule, not quieted).
+// Every binary16 value of an R16F texture reads as its IEEE value: sign * mantissa * 2^-24 for
+// denormals, sign * (1 + m / 1024) * 2^(e - 15) otherwise, infinities as infinities, and NaNs
+// with their payload as the texture holds it (sign | 0x7F800000 | m << 13: the per-lane
+// decoder's rule, not quieted).
 TEST(SamplerBlockPath, EveryHalfDecodesToItsValue) {
-    Texture t = Texture::create_2d(Format::R16F, 256, 256, 1);
-    auto& bytes = t.surface(0).bytes();
-    const size_t pitch = t.surface(0).row_pitch();
-    for (uint32_t h = 0; h < 65536; ++h) {
-        const auto half = static_cast<uint16_t>(h);
-        std::memcpy(bytes.data() + (h / 256) * pitch + (h % 256) * 2, &half, 2);
-    }
-    TextureSampler s;
-    s.set_texture(0, &t);
-    SamplerState st;
-    st.address_u = st.address_v = TextureAddress::Clamp;
-    st.mag_filter = st.min_filter = TextureFilter::Point;
-    st.mip_filter = TextureFilter::None;
-    s.set_state(0, st);
-    s.prepare();
-    if (cpu_has_avx512()) {
-        ASSERT_TRUE(s.block_path_applies(0));
-    }
-    for (uint32_t first = 0; first < 65536; first += emu::kBatchLanes) {
-        std::array<emu::FloatLanes, 4> coords{};
-        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-            coords[0][l] = (static_cast<float>((first + l) % 256) + 0.5f) / 256.0f;
-            coords[1][l] = (static_cast<float>((first + l) / 256) + 0.5f) / 256.0f;
-        }
-        emu::TextureRequest r;
-        r.coordinates = &coords;
-        std::array<emu::FloatLanes, 4> texels;
-        s.sample(r, texels);
-        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-            const uint32_t h = first + l, e = h >> 10 & 0x1Fu, m = h & 0x3FFu;
-            const float sign = h & 0x8000u ? -1.0f : 1.0f;
-            uint32_t expected;
-            if (e == 31 && m != 0) expected = (h & 0x8000u) << 16 | 0x7F800000u | m << 13;
-            else if (e == 31) expected = std::bit_cast<uint32_t>(sign * std::numeric_limits<float>::infinity());
-            else if (e == 0) expected = std::bit_cast<uint32_t>(sign * std::ldexp(static_cast<float>(m), -24));
-            else expected = std::bit_cast<uint32_t>(sign * std::ldexp(1.0f + static_cast<float>(m) / 1024.0f, static_cast<int>(e) - 15));
-            ASSERT_EQ(std::bit_cast<uint32_t>(texels[0][l]), expected) << "half 0x" << std::hex << h;
-        }
-    }
+    expect_every_texel(Format::R16F, 65536, 256, 0, [](uint32_t h) { return h; }, [](uint32_t h) {
+        const uint32_t e = h >> 10 & 0x1Fu, m = h & 0x3FFu;
+        const float sign = h & 0x8000u ? -1.0f : 1.0f;
+        if (e == 31 && m != 0) return (h & 0x8000u) << 16 | 0x7F800000u | m << 13;
+        if (e == 31) return std::bit_cast<uint32_t>(sign * std::numeric_limits<float>::infinity());
+        if (e == 0) return std::bit_cast<uint32_t>(sign * std::ldexp(static_cast<float>(m), -24));
+        return std::bit_cast<uint32_t>(sign * std::ldexp(1.0f + static_cast<float>(m) / 1024.0f, static_cast<int>(e) - 15));
+    });
 }
 
-// Every value of a signed (two's complement) field, POINT-sampled through the block path, reads as
-// D3D9's SNORM rule: s / (2^(n-1) - 1) as IEEE division gives it, and -1 for s = -2^(n-1).
-// V8U8's U (8 bits) and V16U16's U (16 bits), each value once.
+// Every value of a signed (two's complement) field reads as D3D9's SNORM rule: s / (2^(n-1) - 1)
+// as IEEE division gives it, and -1 for s = -2^(n-1). V8U8's U (8 bits) and V16U16's U (16 bits).
 void expect_every_signed_value(Format format, unsigned bits) {
-    const uint32_t count = 1u << bits, width = std::min(count, 256u), height = count / width;
-    const unsigned bytes_per_texel = format_info(format)->bytes;
-    Texture t = Texture::create_2d(format, width, height, 1);
-    auto& bytes = t.surface(0).bytes();
-    const size_t pitch = t.surface(0).row_pitch();
-    for (uint32_t v = 0; v < count; ++v)
-        std::memcpy(bytes.data() + (v / width) * pitch + (v % width) * bytes_per_texel, &v, bits / 8);
-    TextureSampler s;
-    s.set_texture(0, &t);
-    SamplerState st;
-    st.address_u = st.address_v = TextureAddress::Clamp;
-    st.mag_filter = st.min_filter = TextureFilter::Point;
-    st.mip_filter = TextureFilter::None;
-    s.set_state(0, st);
-    s.prepare();
-    if (cpu_has_avx512()) {
-        ASSERT_TRUE(s.block_path_applies(0)) << bits << " bits";
-    }
+    const uint32_t count = 1u << bits;
     const float max = static_cast<float>((1u << (bits - 1)) - 1u);
-    for (uint32_t first = 0; first < count; first += emu::kBatchLanes) {
-        std::array<emu::FloatLanes, 4> coords{};
-        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-            const uint32_t v = std::min(first + l, count - 1);
-            coords[0][l] = (static_cast<float>(v % width) + 0.5f) / static_cast<float>(width);
-            coords[1][l] = (static_cast<float>(v / width) + 0.5f) / static_cast<float>(height);
-        }
-        emu::TextureRequest r;
-        r.coordinates = &coords;
-        std::array<emu::FloatLanes, 4> texels;
-        s.sample(r, texels);
-        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-            const uint32_t v = std::min(first + l, count - 1);
-            const int32_t signed_value = v >= count / 2 ? static_cast<int32_t>(v) - static_cast<int32_t>(count) : static_cast<int32_t>(v);
-            volatile float value = static_cast<float>(signed_value);
-            const float expected = signed_value == -static_cast<int32_t>(count / 2) ? -1.0f : value / max;
-            ASSERT_EQ(std::bit_cast<uint32_t>(texels[0][l]), std::bit_cast<uint32_t>(expected))
-                << bits << "-bit value " << signed_value;
-        }
-    }
+    expect_every_texel(format, count, std::min(count, 256u), 0, [](uint32_t v) { return v; }, [&](uint32_t v) {
+        const int32_t s = v >= count / 2 ? static_cast<int32_t>(v) - static_cast<int32_t>(count) : static_cast<int32_t>(v);
+        volatile float value = static_cast<float>(s);
+        return std::bit_cast<uint32_t>(s == -static_cast<int32_t>(count / 2) ? -1.0f : value / max);
+    });
 }
 
 TEST(SamplerBlockPath, EverySignedFieldValueDecodesAsTheDivision) {
