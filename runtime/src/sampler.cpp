@@ -183,7 +183,7 @@ struct BlockChannel {
     enum class Kind : uint8_t { Zero, One, Unorm, Snorm, Half, Float } kind = Kind::Zero;
     unsigned high = 0;   // 8-byte texels: 1 when the field lies in the second 32-bit word
     unsigned shift = 0;  // within its word
-    unsigned bits = 0;   // the field's width (Unorm, Snorm)
+    unsigned bits = 0;   // the field's width (Snorm: where its sign bit is)
     uint32_t mask = 0;   // 2^n - 1 for Unorm
     float max = 1.0f;    // float(2^n - 1); Snorm: float(2^(n-1) - 1)
 };
@@ -600,6 +600,10 @@ Float4 lookup_any(const Context& c, float u, float v, float w, int face, const L
     }
 }
 
+// The LOD changes nothing when both filters agree and there are no mips to choose (anisotropy
+// chooses its probe count from it).
+bool lod_matters(const Context& c) { return c.mip != Mip::None || c.mag != c.min || c.anisotropic; }
+
 std::array<float, 3> diff(const std::array<float, 3>& a, const std::array<float, 3>& b) {
     return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
 }
@@ -654,11 +658,10 @@ QuadLookups quad_lookups(const Context& c, const emu::TextureRequest& request, u
         dy = diff(s.p[2], s.p[0]);
     }
     const double lx = length(to_texels(c, dx)), ly = length(to_texels(c, dy));
-    // The LOD changes nothing when both filters agree and there are no mips to choose.
-    const bool lod_matters = c.mip != Mip::None || c.mag != c.min || c.anisotropic;
-    const Lod quad_lod = lod_matters ? compute_lod(c, lx, ly, 0.0f) : Lod{};
+    const bool matters = lod_matters(c);
+    const Lod quad_lod = matters ? compute_lod(c, lx, ly, 0.0f) : Lod{};
     for (unsigned i = 0; i < 4; ++i) {
-        s.lod[i] = bias[i] == 0.0f || !lod_matters ? quad_lod : compute_lod(c, lx, ly, bias[i]);
+        s.lod[i] = bias[i] == 0.0f || !matters ? quad_lod : compute_lod(c, lx, ly, bias[i]);
         s.axis[i] = s.lod[i].major_axis == 0 ? dx : dy;
     }
     return s;
@@ -666,7 +669,7 @@ QuadLookups quad_lookups(const Context& c, const emu::TextureRequest& request, u
 
 // ---------------------------------------------------------------------------------------------
 // 16 lanes at once: 2D, volume and cube lookups on textures whose texels are 1, 2, 4 or 8 bytes
-// of UNORM or 32-bit float fields (block_format()), POINT or LINEAR filtering, anisotropic
+// of UNORM, SNORM, 16- or 32-bit float fields (block_format()), POINT or LINEAR filtering, anisotropic
 // included (block_sample_anisotropic()), CLAMP, BORDER, MIRRORONCE, and WRAP or MIRROR on
 // power-of-two levels, sRGB reads, no DXTn: what most draws sample. It is filter_level() and the level blend of
 // lookup() evaluated in AVX-512 registers with the same operations in the same order (IEEE
@@ -705,7 +708,6 @@ std::optional<BlockFormat> block_format(Format f) {
             b.kind = BlockChannel::Kind::Unorm;
             b.high = ch.shift / 32;
             b.shift = ch.shift % 32;
-            b.bits = ch.bits;
             b.mask = (1u << ch.bits) - 1u;
             b.max = static_cast<float>(b.mask);
             break;
@@ -722,7 +724,6 @@ std::optional<BlockFormat> block_format(Format f) {
             b.kind = BlockChannel::Kind::Half;
             b.high = ch.shift / 32;
             b.shift = ch.shift % 32;
-            b.mask = 0xFFFFu;
             break;
         case layout::Type::Float:
             if (ch.shift % 32 != 0 || ch.bits != 32) return std::nullopt;
@@ -820,21 +821,18 @@ SM2_AVX512 inline __m512i block_address(TextureAddress mode, __m512i i, __m512i 
     const __m512i last = _mm512_sub_epi32(n, _mm512_set1_epi32(1));
     if (mode == TextureAddress::Clamp || mode == TextureAddress::Border)
         return _mm512_max_epi32(_mm512_min_epi32(i, last), _mm512_setzero_si512());
-    if (mode == TextureAddress::Wrap) return _mm512_and_si512(i, last);  // on a power of two
-    switch (mode) {
-    case TextureAddress::MirrorOnce: {
+    if (mode == TextureAddress::MirrorOnce) {
         // -1 - i for negative i (its bitwise complement), then clamped to n - 1.
         const __m512i j = _mm512_mask_mov_epi32(i, _mm512_cmplt_epi32_mask(i, _mm512_setzero_si512()),
                                                 _mm512_xor_si512(i, _mm512_set1_epi32(-1)));
         return _mm512_min_epi32(j, last);
     }
-    case TextureAddress::Mirror: {
+    if (mode == TextureAddress::Mirror) {
         const __m512i period = _mm512_add_epi32(last, n);  // 2n - 1
         const __m512i j = _mm512_and_si512(i, period);
         return _mm512_mask_sub_epi32(j, _mm512_cmpge_epi32_mask(j, n), period, j);
     }
-    default: return _mm512_and_si512(i, last);
-    }
+    return _mm512_and_si512(i, last);  // WRAP on a power of two
 }
 
 SM2_AVX512 inline __mmask16 block_outside(TextureAddress mode, __m512i i, __m512i n) {
@@ -1482,16 +1480,15 @@ SM2_AVX512 void block_sample(const Context& c, const BlockLevels& levels, const 
     BlockLanes lanes;
     std::array<double, 8> squares;
     block_coordinates(c, request, lanes, squares);
-    // The LOD changes nothing when both filters agree and there are no mips to choose.
-    const bool lod_matters = c.mip != Mip::None || c.mag != c.min;
+    const bool matters = lod_matters(c);  // (anisotropic lookups have returned above)
     // The lengths are a function of their squares: a batch with the last batch's squares (every
     // batch of a screen-aligned pass) skips the roots too. Where the LOD does not matter, every
     // batch's choice is the same (the first level, the magnification filter), whatever its
     // lengths: the memo's first one serves them all.
-    const bool stale = lod_matters && std::memcmp(memo.squares.data(), squares.data(), sizeof squares) != 0;
+    const bool stale = matters && std::memcmp(memo.squares.data(), squares.data(), sizeof squares) != 0;
     if (!memo.valid || stale) {
         memo.lengths = block_lengths(squares);
-        block_choose_levels(c, lod_matters, memo.lengths, memo.l0, memo.l1, memo.frac, memo.linear);
+        block_choose_levels(c, matters, memo.lengths, memo.l0, memo.l1, memo.frac, memo.linear);
         memo.squares = squares;
         memo.valid = true;
     }
@@ -1502,7 +1499,7 @@ SM2_AVX512 void block_sample(const Context& c, const BlockLevels& levels, const 
     const auto& linear = memo.linear;
     const auto used = static_cast<__mmask16>((1u << (4 * quads)) - 1u);
     block_spread_choices(l0, l1, frac, linear, used, c.first, lanes);
-    if (biased && lod_matters) {
+    if (biased && matters) {
         // texldb lanes with a bias choose their own levels.
         for (unsigned l = 0; l < 4 * quads; ++l) {
             const float bias = in[3][l];
