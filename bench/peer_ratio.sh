@@ -5,11 +5,16 @@
 # sm2/peer against the goal (<= 0.30). Exit 0 whether or not the goal is met (it is a measurement).
 # Without Wine/Xvfb/mingw it says what is missing and times sm2 alone.
 #
-#   bench/peer_ratio.sh [--sm2 PATH] [--threads N] [--rounds R] [--scene FILE] [-- SM2-BENCH-FLAGS...]
+#   bench/peer_ratio.sh [--sm2 PATH] [--threads N] [--rounds R] [--frames K] [--scene FILE] [-- SM2-BENCH-FLAGS...]
 #   e.g. bench/peer_ratio.sh --rounds 3 -- --engine jit
 #
-# Defaults: --sm2 build/release/tools/sm2, --threads 2, --rounds 3,
+# Defaults: --sm2 build/release/tools/sm2, --threads 2, --rounds 3, --frames 6,
 #           --scene ../shared/d3d9ref/scenes/bench_1024.scene (both relative to the repository root).
+# Both sides are timed per frame in the steady state: the peer times each of its 20 frames after a
+# warm-up frame (render states, clear, draws, read-back; textures and shaders already made); sm2's
+# frame is (T(K) - T(1)) / (K - 1), with T(n) the median time of `sm2 bench` on the scene translated
+# with n frames, so device, texture and shader creation cancel out. T(1) alone (a whole run of one
+# frame, creation included) is printed too.
 # The peer needs these Debian packages (tested with Debian 12: Wine 8.0, Mesa 22.3):
 #   apt-get update && apt-get install -y --no-install-recommends \
 #       wine64 wine libwine gcc-mingw-w64-x86-64 xvfb libgl1 libglx-mesa0 libgl1-mesa-dri
@@ -23,16 +28,18 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 sm2=$root/build/release/tools/sm2
 threads=2
 rounds=3
+frames=6
 scene=$root/../shared/d3d9ref/scenes/bench_1024.scene
 extra=()
 goal=0.30
 
-usage() { sed -n '2,12p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 2; }
+usage() { sed -n '2,17p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
         --sm2) [ $# -ge 2 ] || usage; sm2=$2; shift 2 ;;
         --threads) [ $# -ge 2 ] || usage; threads=$2; shift 2 ;;
         --rounds) [ $# -ge 2 ] || usage; rounds=$2; shift 2 ;;
+        --frames) [ $# -ge 2 ] || usage; frames=$2; shift 2 ;;
         --scene) [ $# -ge 2 ] || usage; scene=$2; shift 2 ;;
         --) shift; extra=("$@"); break ;;
         -h|--help) usage ;;
@@ -41,6 +48,7 @@ while [ $# -gt 0 ]; do
 done
 [[ $threads =~ ^[1-9][0-9]*$ ]] || { echo "peer_ratio.sh: --threads needs a positive integer" >&2; exit 2; }
 [[ $rounds =~ ^[1-9][0-9]*$ ]] || { echo "peer_ratio.sh: --rounds needs a positive integer" >&2; exit 2; }
+[[ $frames =~ ^[1-9][0-9]*$ ]] && [ "$frames" -ge 2 ] || { echo "peer_ratio.sh: --frames needs an integer >= 2" >&2; exit 2; }
 [ -x "$sm2" ] || { echo "peer_ratio.sh: no sm2 binary at $sm2 (build it, or pass --sm2 PATH)" >&2; exit 1; }
 [ -f "$scene" ] || { echo "peer_ratio.sh: no scene file $scene" >&2; exit 1; }
 scene=$(cd "$(dirname "$scene")" && pwd)/$(basename "$scene")
@@ -53,8 +61,10 @@ tmp=$(mktemp -d "${TMPDIR:-/tmp}/peer_ratio.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 trap 'exit 130' INT TERM
 
-python3 "$to_sm2cs" "$scene" -o "$tmp/bench.sm2cs" --frames 1 >"$tmp/to_sm2cs.log" 2>&1 || {
-    cat "$tmp/to_sm2cs.log" >&2; echo "peer_ratio.sh: to_sm2cs.py failed" >&2; exit 1; }
+for n in 1 "$frames"; do
+    python3 "$to_sm2cs" "$scene" -o "$tmp/bench_$n.sm2cs" --frames "$n" >"$tmp/to_sm2cs.log" 2>&1 || {
+        cat "$tmp/to_sm2cs.log" >&2; echo "peer_ratio.sh: to_sm2cs.py failed" >&2; exit 1; }
+done
 
 # --- the peer's prerequisites
 missing=()
@@ -65,14 +75,22 @@ command -v Xvfb >/dev/null || missing+=("Xvfb (package xvfb)")
 command -v x86_64-w64-mingw32-gcc >/dev/null || missing+=("x86_64-w64-mingw32-gcc (package gcc-mingw-w64-x86-64)")
 [ -x "$ref/run.sh" ] || missing+=("$ref/run.sh (the d3d9ref player)")
 
-# sm2 bench prints "time per run: median 1715.973 ms, best 1688.712 ms"; with --frames 1 a run is one frame.
-sm2_seconds() {
+# sm2 bench prints "time per run: median 1715.973 ms, best 1688.712 ms": the median run of STREAM, in s.
+sm2_run_seconds() {
     local out
-    out=$("$sm2" bench "$tmp/bench.sm2cs" --threads "$threads" --repeat 5 ${extra[@]+"${extra[@]}"} 2>&1) || {
+    out=$("$sm2" bench "$1" --threads "$threads" --repeat 5 ${extra[@]+"${extra[@]}"} 2>&1) || {
         echo "$out" >&2; echo "peer_ratio.sh: sm2 bench failed" >&2; return 1; }
     echo "$out" >"$tmp/sm2.log"
     awk '/^time per run: median / { printf "%.6f\n", $5 / 1000; found = 1 } END { exit !found }' "$tmp/sm2.log" || {
         echo "$out" >&2; echo "peer_ratio.sh: no 'time per run: median' line in sm2 bench output" >&2; return 1; }
+}
+
+# "FRAME RUN": the steady-state frame, (T(K) - T(1)) / (K - 1), and T(1), in s.
+sm2_seconds() {
+    local one many
+    one=$(sm2_run_seconds "$tmp/bench_1.sm2cs") || return 1
+    many=$(sm2_run_seconds "$tmp/bench_$frames.sm2cs") || return 1
+    awk -v a="$one" -v b="$many" -v k="$frames" 'BEGIN { printf "%.6f %.6f\n", (b - a) / (k - 1), a }'
 }
 
 # player.c prints "time: frames=20 mean_ms=... median_ms=M min_ms=... max_ms=... readback_ms=..."
@@ -96,24 +114,25 @@ echo "threads: $threads for both (sm2 bench --threads $threads$flags; llvmpipe L
 if [ ${#missing[@]} -gt 0 ]; then
     echo "peer not run: missing $(printf '%s; ' "${missing[@]}" | sed 's/; $//')"
     echo "install with: apt-get update && apt-get install -y --no-install-recommends wine64 wine libwine gcc-mingw-w64-x86-64 xvfb libgl1 libglx-mesa0 libgl1-mesa-dri"
-    s=$(sm2_seconds)
-    printf 'sm2 alone: %.4f s/frame (median of 5 runs)\n' "$s"
+    read -r s one <<<"$(sm2_seconds)"
+    printf 'sm2 alone: %.4f s/frame in the steady state (%d-frame and 1-frame runs, median of 5 each); a whole 1-frame run %.4f s\n' "$s" "$frames" "$one"
     exit 0
 fi
 
-peer_all=() sm2_all=()
+peer_all=() sm2_all=() one_all=()
 for r in $(seq "$rounds"); do
     p=$(peer_seconds)
-    s=$(sm2_seconds)
-    peer_all+=("$p") sm2_all+=("$s")
-    awk -v r="$r" -v n="$rounds" -v p="$p" -v s="$s" \
-        'BEGIN { printf "round %d/%d: peer %.4f s/frame  sm2 %.4f s/frame  ratio %.3f\n", r, n, p, s, s / p }'
+    read -r s one <<<"$(sm2_seconds)"
+    peer_all+=("$p") sm2_all+=("$s") one_all+=("$one")
+    awk -v r="$r" -v n="$rounds" -v p="$p" -v s="$s" -v o="$one" \
+        'BEGIN { printf "round %d/%d: peer %.4f s/frame  sm2 %.4f s/frame  ratio %.3f  (sm2 whole 1-frame run %.4f s, ratio %.3f)\n", r, n, p, s, s / p, o, o / p }'
 done
 pm=$(printf '%s\n' "${peer_all[@]}" | median)
 sm=$(printf '%s\n' "${sm2_all[@]}" | median)
-awk -v p="$pm" -v s="$sm" -v g="$goal" -v r="$rounds" 'BEGIN {
+om=$(printf '%s\n' "${one_all[@]}" | median)
+awk -v p="$pm" -v s="$sm" -v o="$om" -v g="$goal" -v r="$rounds" 'BEGIN {
     ratio = s / p
-    printf "median of %d rounds: peer (Wine d3d9 + llvmpipe) %.4f s/frame, sm2 %.4f s/frame\n", r, p, s
+    printf "median of %d rounds: peer (Wine d3d9 + llvmpipe) %.4f s/frame, sm2 %.4f s/frame (steady state; a whole 1-frame run %.4f s, ratio %.3f)\n", r, p, s, o, o / p
     printf "ratio sm2/peer = %.3f (goal <= %.2f): %s\n", ratio, g, ratio <= g ? "goal met" : "goal not met"
 }'
 exit 0

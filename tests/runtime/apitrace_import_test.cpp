@@ -360,7 +360,7 @@ TEST(ApitraceImport, StreamedReplayOfATraceEqualsTheImportedStreams) {
         std::vector<std::vector<std::byte>> frames;
         DeviceOptions options;
         options.output_dir = "frames";  // not written: write_image keeps the bytes
-        options.write_image = [&](const Surface& s, const std::string&) { frames.push_back(s.bytes()); };
+        options.write_image = [&](const Surface& s, const std::string&) { frames.emplace_back(s.bytes().begin(), s.bytes().end()); };
         Device device(options);
         run(device);
         return frames;

@@ -399,7 +399,7 @@ TEST_F(DeviceTest, ThreadCountDoesNotChangeTheImage) {
         tris.push_back({1.0f - s * 0.5f, 0.9f, 1 - s, 1, 0, s, 1, 0.5f});
         tris.push_back({-0.3f, -1.3f + s * 2, 0.5f, 1, 1, 0, s, 0.5f});
     }
-    std::vector<std::byte> images[2];
+    TexelBytes images[2];
     for (unsigned k = 0; k < 2; ++k) {
         make(100, 70, std::nullopt, k == 0 ? 1 : 3);
         ASSERT_TRUE(device->set_render_state(rs(RenderStateType::AlphaBlendEnable), 1));

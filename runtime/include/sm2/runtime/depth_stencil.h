@@ -17,6 +17,7 @@
 #include "sm2/emu/batch.h"
 #include "sm2/runtime/formats.h"
 #include "sm2/runtime/render_state.h"
+#include "sm2/runtime/surface.h"
 
 namespace sm2::runtime {
 
@@ -60,7 +61,7 @@ private:
     Format format_ = Format::Unknown;
     DepthFormatInfo info_{};
     uint32_t width_ = 0, height_ = 0;
-    std::vector<uint32_t> depth_;
+    std::vector<uint32_t, CacheLineAllocator<uint32_t>> depth_;  // rows on whole cache lines, as Surface
     std::vector<uint8_t> stencil_;
 };
 

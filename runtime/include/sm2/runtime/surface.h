@@ -4,11 +4,29 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <new>
 #include <vector>
 
 #include "sm2/runtime/formats.h"
 
 namespace sm2::runtime {
+
+// Texel storage starts on a 64-byte cache line (malloc gives 16 bytes): a render target's rows
+// then split into the same whole lines as the tiles do (32 texels of 4 bytes are two lines), so
+// the block paths' 8-texel row loads and stores never straddle two lines, and no line is shared
+// by two tiles, which two threads may be writing at once.
+template <class T>
+struct CacheLineAllocator {
+    using value_type = T;
+    static constexpr std::align_val_t kAlignment{64};
+    CacheLineAllocator() = default;
+    template <class U>
+    explicit CacheLineAllocator(const CacheLineAllocator<U>&) noexcept {}
+    T* allocate(size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
+    void deallocate(T* p, size_t) noexcept { ::operator delete(p, kAlignment); }
+    friend bool operator==(const CacheLineAllocator&, const CacheLineAllocator&) { return true; }
+};
+using TexelBytes = std::vector<std::byte, CacheLineAllocator<std::byte>>;
 
 class Surface {
 public:
@@ -23,8 +41,8 @@ public:
     // Bytes from one row of texels (or of 4x4 blocks) to the next, and from one slice to the next.
     [[nodiscard]] size_t row_pitch() const { return row_pitch_; }
     [[nodiscard]] size_t slice_pitch() const { return slice_pitch_; }
-    [[nodiscard]] std::vector<std::byte>& bytes() { return data_; }
-    [[nodiscard]] const std::vector<std::byte>& bytes() const { return data_; }
+    [[nodiscard]] TexelBytes& bytes() { return data_; }
+    [[nodiscard]] const TexelBytes& bytes() const { return data_; }
 
     // The value a sampler sees at integer texel (x, y, z); coordinates must be in range.
     [[nodiscard]] Float4 read(uint32_t x, uint32_t y, uint32_t z = 0) const;
@@ -39,7 +57,7 @@ private:
     unsigned texel_bytes_ = 0;
     TexelDecoder decoder_ = nullptr;  // looked up once: read/write run per pixel
     TexelEncoder encoder_ = nullptr;
-    std::vector<std::byte> data_;
+    TexelBytes data_;
 };
 
 }  // namespace sm2::runtime
