@@ -996,11 +996,15 @@ void Device::clear_rect(uint32_t flags, uint32_t color, float z, uint32_t stenci
             const unsigned bytes = format_info(s->format())->bytes;
             std::array<std::byte, 16> texel{};
             encode_texel(s->format(), value, texel.data());
-            for (int32_t y = r.top; y < r.bottom; ++y) {
-                std::byte* row = s->bytes().data() + static_cast<size_t>(y) * s->row_pitch();
-                for (int32_t x = r.left; x < r.right; ++x)
-                    std::memcpy(row + static_cast<size_t>(x) * bytes, texel.data(), bytes);
-            }
+            // The rectangle's first row texel by texel, doubling what is done; then each other
+            // row as a copy of it.
+            const size_t run = static_cast<size_t>(r.right - r.left) * bytes;
+            std::byte* const first = s->bytes().data() + static_cast<size_t>(r.top) * s->row_pitch() +
+                                     static_cast<size_t>(r.left) * bytes;
+            std::memcpy(first, texel.data(), bytes);
+            for (size_t done = bytes; done < run; done *= 2) std::memcpy(first + done, first, std::min(done, run - done));
+            for (int32_t y = r.top + 1; y < r.bottom; ++y)
+                std::memcpy(first + static_cast<size_t>(y - r.top) * s->row_pitch(), first, run);
         }
     }
     if (ds && (flags & (kClearZBuffer | kClearStencil)))

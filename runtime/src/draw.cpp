@@ -229,7 +229,7 @@ void shade_quads(const PixelPipeline& pipe, const PrimitiveSetup& prim, std::spa
     if (pipe.early_depth_stencil) {
         // The shader can change neither depth nor coverage: test first, shade only survivors.
         live = depth_stencil_test(pipe.merger.depth_stencil, pipe.targets.depth_stencil, w.lanes.x, w.lanes.y,
-                                  w.lanes.depth, live, w.lanes.clockwise);
+                                  w.lanes.depth, live, w.lanes.clockwise, pipe.reference_paths);
         input.depth_stencil_done = true;
         observer.early_tested(live);
         if (!live) return;

@@ -545,7 +545,7 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
     // Stencil, depth, stencil update (§11).
     if (!in.depth_stencil_done)
         live = depth_stencil_test(s.depth_stencil, targets.depth_stencil, lanes.x, lanes.y, depth, live,
-                                  lanes.clockwise);
+                                  lanes.clockwise, in.generic_path);
 
     for (unsigned t = 0; t < kMaxRenderTargets; ++t) {
         Surface* surface = targets.color[t];

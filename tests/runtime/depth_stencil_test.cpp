@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "sm2/runtime/depth_stencil.h"
 
@@ -251,6 +252,95 @@ TEST(DepthStencil, NoStencilBitsReadZero) {
     EXPECT_EQ(s.stencil(1, 2), 0u);
     st.ref = 1;
     EXPECT_EQ(test_one(st, s, 0), 0u);
+}
+
+}  // namespace
+}  // namespace sm2::runtime
+
+namespace sm2::runtime {
+namespace {
+
+// A depth value for the 16-lane path's quantization: random in [0, 1], a rounding tie of the
+// format's code (k + 0.5) / (2^n - 1) or a float next to one, or a special value.
+float random_depth(std::mt19937& rng, unsigned bits) {
+    const double codes = std::ldexp(1.0, static_cast<int>(bits)) - 1.0;
+    std::uniform_int_distribution<int> kind(0, 9);
+    switch (kind(rng)) {
+    case 0: case 1: case 2: return std::uniform_real_distribution<float>(0.0f, 1.0f)(rng);
+    case 3: case 4: case 5: {
+        const double k = std::floor(std::uniform_real_distribution<double>(0.0, codes)(rng));
+        const auto tie = static_cast<float>((k + 0.5) / codes);
+        const int step = std::uniform_int_distribution<int>(-2, 2)(rng);
+        return step < 0 ? std::nextafter(tie, -1.0f) : step > 0 ? std::nextafter(tie, 2.0f) : tie;
+    }
+    case 6: return std::uniform_real_distribution<float>(-1.0f, 2.0f)(rng);
+    case 7: return std::numeric_limits<float>::denorm_min() * static_cast<float>(std::uniform_int_distribution<int>(0, 100)(rng));
+    case 8: return std::uniform_int_distribution<int>(0, 1)(rng) ? 0.0f : -0.0f;
+    default: {
+        const float special[] = {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+                                 -std::numeric_limits<float>::infinity(), 1.0f, std::nextafter(1.0f, 0.0f), 0x1p-24f,
+                                 // 0.5 is every integer format's one exact tie (z (2^n - 1) = k + 1/2)
+                                 0.5f, 0.5f, std::nextafter(0.5f, 0.0f), std::nextafter(0.5f, 1.0f)};
+        return special[std::uniform_int_distribution<size_t>(0, std::size(special) - 1)(rng)];
+    }
+    }
+}
+
+// The 16-lane depth test (no stencil) against the lane-by-lane loop: the same lanes pass and the
+// same depth values are stored, for every format, compare function and write enable, with lanes
+// outside the surface, lanes off, repeated pixels and depth values on the formats' rounding ties.
+TEST(DepthStencil, SixteenLanePathMatchesTheLaneByLaneLoop) {
+    std::mt19937 rng(20261128);
+    const Format formats[] = {Format::D16, Format::D16_LOCKABLE, Format::D24S8, Format::D24X8, Format::D15S1,
+                              Format::D24X4S4, Format::D32F_LOCKABLE, Format::D24FS8, Format::D32};
+    const CompareFunc funcs[] = {CompareFunc::Never, CompareFunc::Less, CompareFunc::Equal, CompareFunc::LessEqual,
+                                 CompareFunc::Greater, CompareFunc::NotEqual, CompareFunc::GreaterEqual, CompareFunc::Always};
+    unsigned passed_lanes = 0, failed_lanes = 0;
+    for (unsigned trial = 0; trial < 4000; ++trial) {
+        const Format f = formats[trial % std::size(formats)];
+        DepthStencilSurface a = make(f, 12, 9);
+        const unsigned bits = a.info().float_depth ? 24 : a.info().depth_bits;
+        // Stored values: the quantized codes of random depths (some equal to what comes next).
+        for (uint32_t y = 0; y < 9; ++y)
+            for (uint32_t x = 0; x < 12; ++x) a.set_depth(x, y, random_depth(rng, bits));
+        DepthStencilSurface b = a;
+        DepthStencilState st;
+        st.depth_enable = true;
+        st.depth_write = rng() % 4 != 0;
+        st.depth_func = funcs[rng() % std::size(funcs)];
+        Lanes x{}, y{};
+        Depths d{};
+        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+            x[l] = std::uniform_int_distribution<int32_t>(-2, 13)(rng);
+            y[l] = std::uniform_int_distribution<int32_t>(-2, 10)(rng);
+            d[l] = random_depth(rng, bits);
+            // Half the lanes at a stored pixel's own value.
+            if (rng() % 2 && x[l] >= 0 && x[l] < 12 && y[l] >= 0 && y[l] < 9)
+                d[l] = dequantize_depth(a.info(), a.stored_depth(static_cast<uint32_t>(x[l]), static_cast<uint32_t>(y[l])));
+        }
+        if (trial % 5 != 0) {
+            // Distinct pixels, as a rasterized batch has (the 16-lane path's case).
+            for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+                x[l] = static_cast<int32_t>(l % 4) * 3 - (trial % 3 == 0 ? 1 : 0);
+                y[l] = static_cast<int32_t>(l / 4) * 2 + static_cast<int32_t>(trial % 2);
+            }
+        }
+        const auto live = static_cast<emu::LaneMask>(rng() & 0xFFFF);
+        const emu::LaneMask vector = depth_stencil_test(st, &a, x, y, d, live, true, false);
+        const emu::LaneMask reference = depth_stencil_test(st, &b, x, y, d, live, true, true);
+        ASSERT_EQ(vector, reference) << "trial " << trial;
+        for (uint32_t py = 0; py < 9; ++py)
+            for (uint32_t px = 0; px < 12; ++px)
+                ASSERT_EQ(a.stored_depth(px, py), b.stored_depth(px, py)) << "trial " << trial << " at " << px << "," << py;
+        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+            if (!(live >> l & 1u)) continue;
+            if (reference >> l & 1u) ++passed_lanes;
+            else ++failed_lanes;
+        }
+    }
+    // Both outcomes are well represented.
+    EXPECT_GT(passed_lanes, 10000u);
+    EXPECT_GT(failed_lanes, 10000u);
 }
 
 }  // namespace
