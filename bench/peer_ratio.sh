@@ -8,7 +8,7 @@
 #   bench/peer_ratio.sh [--sm2 PATH] [--threads N] [--rounds R] [--frames K] [--scene FILE] [-- SM2-BENCH-FLAGS...]
 #   e.g. bench/peer_ratio.sh --rounds 3 -- --engine jit
 #
-# Defaults: --sm2 build/release/tools/sm2, --threads 2, --rounds 3, --frames 6,
+# Defaults: --sm2 build/release/tools/sm2, --threads 2, --rounds 3, --frames 11,
 #           --scene ../shared/d3d9ref/scenes/bench_1024.scene (both relative to the repository root).
 # Both sides are timed per frame in the steady state: the peer times each of its 20 frames after a
 # warm-up frame (render states, clear, draws, read-back; textures and shaders already made); sm2's
@@ -28,7 +28,7 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 sm2=$root/build/release/tools/sm2
 threads=2
 rounds=3
-frames=6
+frames=11
 scene=$root/../shared/d3d9ref/scenes/bench_1024.scene
 extra=()
 goal=0.30
