@@ -113,12 +113,7 @@ DepthStencilState depth_stencil_state(const RenderState& rs) {
 
 namespace {
 
-// GCC 12's AVX-512 headers trip -Wuninitialized on their own _mm512_undefined_*() self-init.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
+SM2_AVX512_CODE_BEGIN
 
 #define SM2_AVX512_CD __attribute__((target("avx512f,avx512dq,avx512vl,avx512cd")))
 
@@ -203,9 +198,7 @@ SM2_AVX512_CD bool depth_test16(const DepthStencilState& st, DepthStencilSurface
 }
 
 #undef SM2_AVX512_CD
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
+SM2_AVX512_CODE_END
 
 }  // namespace
 

@@ -10,12 +10,7 @@
 namespace sm2::runtime {
 namespace {
 
-// GCC 12's AVX-512 headers trip -Wuninitialized on their own _mm512_undefined_*() self-init.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
+SM2_AVX512_CODE_BEGIN
 
 // Each lane's pixel (lanes past quad n - 1 repeat its position), written with one 64-byte store
 // per coordinate: the loops below load them as vectors, and a vector load of what 16 scalar
@@ -97,9 +92,7 @@ SM2_AVX512 void weights_and_varyings_avx512(const PrimitiveSetup& p, uint16_t us
     }
 }
 
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
+SM2_AVX512_CODE_END
 
 }  // namespace
 

@@ -267,11 +267,7 @@ void blend_batch(const BlendState& b, const Rgba<Lanes>& src, const Rgba<Lanes>&
     for (Lanes& c : out) saturate(c);
 }
 
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
+SM2_AVX512_CODE_BEGIN
 
 // The lanes of `live` inside a width x height target, and whether their pixels are pairwise
 // different (distinct_pixels()), in AVX-512 registers: the keys, the quad-order test and, for
@@ -425,9 +421,7 @@ SM2_AVX512 void merge_unorm8_avx512(const BlendState& b, const Unorm8Texel& fmt,
     }
 }
 
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
+SM2_AVX512_CODE_END
 
 }  // namespace
 

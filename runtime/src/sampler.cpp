@@ -798,12 +798,7 @@ bool block_supported(const Context& c, BlockLevels& levels) {
            (!c.volume || block_address_supported(c.address[2], all_pow2));
 }
 
-// GCC 12's AVX-512 headers trip -Wuninitialized on their own _mm512_undefined_*() self-init.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
+SM2_AVX512_CODE_BEGIN
 
 // linear_taps() and the POINT index of filter_level() for 16 lanes: i0, i1 addressed, a the
 // weight of i1 (0 for POINT lanes, whose i1 is never weighted).
@@ -1515,9 +1510,7 @@ SM2_AVX512 void block_sample(const Context& c, const BlockLevels& levels, const 
     block_lookup(c, levels, lanes, used, texels);
 }
 
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
+SM2_AVX512_CODE_END
 #undef SM2_AVX512
 
 }  // namespace

@@ -9,6 +9,19 @@
 // Functions marked SM2_AVX512 run only where cpu_has_avx512() holds.
 #define SM2_AVX512 __attribute__((target("avx512f,avx512dq,avx512vl")))
 
+// GCC 12's AVX-512 headers trip -Wuninitialized on their own _mm512_undefined_*() self-init:
+// code that uses the intrinsics sits between SM2_AVX512_CODE_BEGIN and SM2_AVX512_CODE_END.
+#if defined(__GNUC__) && !defined(__clang__)
+#define SM2_AVX512_CODE_BEGIN                                   \
+    _Pragma("GCC diagnostic push")                              \
+    _Pragma("GCC diagnostic ignored \"-Wuninitialized\"")       \
+    _Pragma("GCC diagnostic ignored \"-Wmaybe-uninitialized\"")
+#define SM2_AVX512_CODE_END _Pragma("GCC diagnostic pop")
+#else
+#define SM2_AVX512_CODE_BEGIN
+#define SM2_AVX512_CODE_END
+#endif
+
 namespace sm2::runtime {
 
 // Whether this CPU runs SM2_AVX512 code (the block paths of the sampler, the output merger and
