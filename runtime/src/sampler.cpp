@@ -972,28 +972,34 @@ SM2_AVX512 __attribute__((always_inline)) inline void block_pairs(const BlockLev
     second = _mm512_permutex2var_epi32(lo, odd, hi);
 }
 
+// block_narrow_words() for the lanes of `last`, whose word would pass their level's end: the
+// bytes up to it, the rest 0. Rare (a level's last texels), so kept out of line: with it inline
+// the common path carried its stack arrays and was not inlined itself.
+SM2_AVX512 __attribute__((noinline, cold)) __m512i block_last_words(const BlockAddress& a, __m512i in_level,
+                                                                   __m512i words, __mmask16 last) {
+    alignas(64) std::array<int32_t, emu::kBatchLanes> offset, size;
+    alignas(64) std::array<uint32_t, emu::kBatchLanes> word;
+    alignas(64) std::array<const std::byte*, emu::kBatchLanes> base;
+    _mm512_store_si512(offset.data(), in_level);
+    _mm512_store_si512(size.data(), a.size);
+    _mm512_store_si512(word.data(), words);
+    _mm512_store_si512(base.data(), a.base_lo);
+    _mm512_store_si512(base.data() + 8, a.base_hi);
+    for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+        if (!(last >> l & 1u)) continue;
+        word[l] = 0;
+        std::memcpy(&word[l], base[l] + offset[l], static_cast<size_t>(size[l] - offset[l]));
+    }
+    return _mm512_load_si512(word.data());
+}
+
 // block_words() for narrow texels: a word would reach up to 3 bytes past a narrow texel, so a
 // lane whose word would pass its level's end reads the bytes up to it (the rest 0).
-SM2_AVX512 inline __m512i block_narrow_words(const BlockLevels& levels, const BlockAddress& a, __m512i in_level,
-                                             __mmask16 lanes) {
+SM2_AVX512 __attribute__((always_inline)) inline __m512i block_narrow_words(const BlockLevels& levels, const BlockAddress& a,
+                                                                           __m512i in_level, __mmask16 lanes) {
     const __mmask16 inside = _mm512_mask_cmple_epi32_mask(lanes, _mm512_add_epi32(in_level, _mm512_set1_epi32(4)), a.size);
-    __m512i words = block_words(levels, a, in_level, inside);
-    if (const auto last = static_cast<__mmask16>(lanes & ~inside)) {
-        alignas(64) std::array<int32_t, emu::kBatchLanes> offset, size;
-        alignas(64) std::array<uint32_t, emu::kBatchLanes> word;
-        alignas(64) std::array<const std::byte*, emu::kBatchLanes> base;
-        _mm512_store_si512(offset.data(), in_level);
-        _mm512_store_si512(size.data(), a.size);
-        _mm512_store_si512(word.data(), words);
-        _mm512_store_si512(base.data(), a.base_lo);
-        _mm512_store_si512(base.data() + 8, a.base_hi);
-        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-            if (!(last >> l & 1u)) continue;
-            word[l] = 0;
-            std::memcpy(&word[l], base[l] + offset[l], static_cast<size_t>(size[l] - offset[l]));
-        }
-        words = _mm512_load_si512(word.data());
-    }
+    const __m512i words = block_words(levels, a, in_level, inside);
+    if (const auto last = static_cast<__mmask16>(lanes & ~inside)) return block_last_words(a, in_level, words, last);
     return words;
 }
 
