@@ -186,6 +186,10 @@ struct BlockChannel {
     unsigned bits = 0;   // the field's width (Snorm: where its sign bit is)
     uint32_t mask = 0;   // 2^n - 1 for Unorm
     float max = 1.0f;    // float(2^n - 1); Snorm: float(2^(n-1) - 1)
+    // Unorm fields of up to 5 bits: (v & mask) / max for every 5-bit v, so that a decode is one
+    // permute by the bits from the field up (the bits above it index copies of the same values)
+    // instead of a mask, a conversion and a corrected quotient.
+    alignas(64) std::array<float, 32> decoded{};
 };
 using BlockFormat = std::array<BlockChannel, 4>;
 
@@ -710,6 +714,8 @@ std::optional<BlockFormat> block_format(Format f) {
             b.shift = ch.shift % 32;
             b.mask = (1u << ch.bits) - 1u;
             b.max = static_cast<float>(b.mask);
+            if (b.mask < b.decoded.size())
+                for (uint32_t v = 0; v < b.decoded.size(); ++v) b.decoded[v] = static_cast<float>(v & b.mask) / b.max;
             break;
         case layout::Type::Snorm:
             if (ch.bits < 2 || ch.bits > 16 || ch.shift % 32 + ch.bits > 32) return std::nullopt;
@@ -902,6 +908,12 @@ SM2_AVX512 inline __m512 block_channel(__m512i texels, const BlockChannel& ch) {
     }
     case BlockChannel::Kind::Unorm: break;
     }
+    // The permutes read the low 4 (5) bits of each index: the field and, for a narrower one,
+    // bits above it, which the table ignores.
+    if (ch.mask <= 15u) return _mm512_permutexvar_ps(_mm512_srli_epi32(texels, ch.shift), _mm512_load_ps(ch.decoded.data()));
+    if (ch.mask <= 31u)
+        return _mm512_permutex2var_ps(_mm512_load_ps(ch.decoded.data()), _mm512_srli_epi32(texels, ch.shift),
+                                      _mm512_load_ps(ch.decoded.data() + 16));
     const __m512i field = _mm512_and_si512(_mm512_srli_epi32(texels, ch.shift), _mm512_set1_epi32(static_cast<int32_t>(ch.mask)));
     return unorm8::quotient(_mm512_cvtepi32_ps(field), ch.max);
 }
