@@ -212,6 +212,10 @@ struct TextureSampler::BlockLevels {
     unsigned texel_bytes = 4;  // 1, 2 (narrow texels), 4 or 8 (two words)
     Context context;
     BlockFormat format;  // how texels decode (looked up once per prepare(), not per lookup)
+    // Every channel a UNORM field wider than 5 bits (A16B16G16R16; A8R8G8B8 under float
+    // filtering): the filter's instance for them decodes each tap inline, without
+    // block_channel()'s call and switch.
+    bool wide_unorm = false;
 };
 
 namespace {
@@ -753,6 +757,11 @@ bool block_supported(const Context& c, BlockLevels& levels) {
     const std::optional<BlockFormat> format = block_format(c.format);
     if (!format) return false;
     levels.format = *format;
+    // (Fixed8 filtering sums fields of up to 8 bits exactly, without decoding taps: the generic
+    // instance serves those; given to the wide one, bench_1024 ran 2-3% slower.)
+    levels.wide_unorm = std::all_of(format->begin(), format->end(), [&](const BlockChannel& ch) {
+        return ch.kind == BlockChannel::Kind::Unorm && ch.mask > 31u && !(c.fixed && ch.mask <= 0xFFu);
+    });
     levels.texel_bytes = c.bpp;
     if (c.texture->levels() > BlockLevels::kMax || (c.bpp != 8 && c.bpp != 4 && c.bpp != 2 && c.bpp != 1)) return false;
     if (!cpu_has_avx512()) return false;
@@ -930,10 +939,11 @@ SM2_AVX512 inline __m512 block_srgb(const Context& c, __m512 value) {
 // Channel k of 16 taps (sRGB-decoded where the stage reads sRGB), BORDERCOLOR's channel k on
 // the lanes of `outside`.
 // Srgb: c.srgb as a compile-time constant (a run-time test here cost bench_1024 5%).
-template <bool Srgb>
+// WideUnorm: the channel is a UNORM field wider than 5 bits (BlockLevels::wide_unorm), decoded here.
+template <bool Srgb, bool WideUnorm>
 SM2_AVX512 inline __m512 block_tap(const Context& c, __m512i texels, const BlockChannel& ch, unsigned k,
                                    __mmask16 outside) {
-    __m512 value = block_channel(texels, ch);
+    __m512 value = WideUnorm ? unorm8::quotient(block_field(texels, ch), ch.max) : block_channel(texels, ch);
     if constexpr (Srgb)
         if (k < 3) value = block_srgb(c, value);
     return outside ? _mm512_mask_mov_ps(value, outside, _mm512_set1_ps(c.border[k])) : value;
@@ -1075,7 +1085,7 @@ SM2_AVX512 inline __m512i tap_word(const BlockQuad& q, unsigned tap, unsigned hi
 }
 
 // filter_level() on each lane's level `level` (POINT or LINEAR per lane), 2D or volume.
-template <bool Srgb>
+template <bool Srgb, bool WideUnorm>
 SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, const BlockFormat& format, __m512i level,
                                    const BlockLanes& in, __mmask16 linear, __m512 (&out)[4]) {
     const __m512i w = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.width.data()));
@@ -1120,11 +1130,11 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
             const __m512 w00 = _mm512_mul_ps(_mm512_mul_ps(bx, by), wz), w10 = _mm512_mul_ps(_mm512_mul_ps(tx.a, by), wz);
             const __m512 w01 = _mm512_mul_ps(_mm512_mul_ps(bx, ty.a), wz), w11 = _mm512_mul_ps(_mm512_mul_ps(tx.a, ty.a), wz);
             for (unsigned k = 0; k < 4; ++k) {
-                const __m512 c00 = block_tap<Srgb>(c, tap_word(q, 0, format[k].high), format[k], k, o00);
+                const __m512 c00 = block_tap<Srgb, WideUnorm>(c, tap_word(q, 0, format[k].high), format[k], k, o00);
                 if (p == 0) point[k] = c00;
-                __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_tap<Srgb>(c, tap_word(q, 1, format[k].high), format[k], k, o10), w10));
-                r = _mm512_add_ps(r, _mm512_mul_ps(block_tap<Srgb>(c, tap_word(q, 2, format[k].high), format[k], k, o01), w01));
-                sum[p][k] = _mm512_add_ps(r, _mm512_mul_ps(block_tap<Srgb>(c, tap_word(q, 3, format[k].high), format[k], k, o11), w11));
+                __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_tap<Srgb, WideUnorm>(c, tap_word(q, 1, format[k].high), format[k], k, o10), w10));
+                r = _mm512_add_ps(r, _mm512_mul_ps(block_tap<Srgb, WideUnorm>(c, tap_word(q, 2, format[k].high), format[k], k, o01), w01));
+                sum[p][k] = _mm512_add_ps(r, _mm512_mul_ps(block_tap<Srgb, WideUnorm>(c, tap_word(q, 3, format[k].high), format[k], k, o11), w11));
             }
         }
         for (unsigned k = 0; k < 4; ++k) out[k] = _mm512_mask_mov_ps(point[k], linear, _mm512_add_ps(sum[0][k], sum[1][k]));
@@ -1158,10 +1168,10 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
                 continue;
             }
         }
-        const __m512 c00 = block_tap<Srgb>(c, tap_word(q, 0, ch.high), ch, k, o00);
-        __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_tap<Srgb>(c, tap_word(q, 1, ch.high), ch, k, o10), w10));
-        r = _mm512_add_ps(r, _mm512_mul_ps(block_tap<Srgb>(c, tap_word(q, 2, ch.high), ch, k, o01), w01));
-        r = _mm512_add_ps(r, _mm512_mul_ps(block_tap<Srgb>(c, tap_word(q, 3, ch.high), ch, k, o11), w11));
+        const __m512 c00 = block_tap<Srgb, WideUnorm>(c, tap_word(q, 0, ch.high), ch, k, o00);
+        __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_tap<Srgb, WideUnorm>(c, tap_word(q, 1, ch.high), ch, k, o10), w10));
+        r = _mm512_add_ps(r, _mm512_mul_ps(block_tap<Srgb, WideUnorm>(c, tap_word(q, 2, ch.high), ch, k, o01), w01));
+        r = _mm512_add_ps(r, _mm512_mul_ps(block_tap<Srgb, WideUnorm>(c, tap_word(q, 3, ch.high), ch, k, o11), w11));
         // POINT lanes read their texel as it is (filter_level() fetches it): the weighted sum
         // equals it for finite non-negative values, not for a float texel beside an infinity.
         r = _mm512_mask_mov_ps(c00, linear, r);
@@ -1176,7 +1186,9 @@ SM2_AVX512 __attribute__((always_inline)) inline void block_lookup(const Context
     const BlockFormat& format = levels.format;
     const __mmask16 linear = _mm512_cmpneq_epi32_mask(_mm512_load_si512(in.linear.data()), _mm512_setzero_si512());
     __m512 r[4];
-    const auto filter = c.srgb ? block_filter_level<true> : block_filter_level<false>;
+    const auto filter = c.srgb ? block_filter_level<true, false>
+                        : levels.wide_unorm ? block_filter_level<false, true>
+                                            : block_filter_level<false, false>;
     filter(c, levels, format, _mm512_load_si512(in.l0.data()), in, linear, r);
     const __m512 frac = _mm512_load_ps(in.frac.data());
     const __mmask16 second = _mm512_cmp_ps_mask(frac, _mm512_setzero_ps(), _CMP_GT_OQ);
