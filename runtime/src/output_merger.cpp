@@ -191,6 +191,42 @@ const Unorm8Texel& unorm8_texel(const FormatInfo& info) {
     return table[static_cast<size_t>(&info - format_table().data())];
 }
 
+// Float targets (R32F, G32R32F, A32B32G32R32F): every stored channel a 32-bit float in its own
+// 4 bytes, which layout::decode and encode copy bit for bit, and no other bytes. Without
+// blending a merge then copies each written channel's shader value into place; a masked
+// channel would store the bits it read, so it is left as it is.
+struct FloatTexel {
+    bool valid = false;
+    unsigned bytes = 0;
+    std::array<int8_t, 4> offset{};  // the channel's byte in the texel; -1: not stored
+};
+FloatTexel float_layout(const FormatInfo& info) {
+    FloatTexel t;
+    const layout::Layout lay = layout::layout_of(info.format);
+    if (!lay.valid || info.kind != FormatKind::Color) return t;
+    for (unsigned c = 0; c < 4; ++c) {
+        const layout::Channel ch = lay.rgba[c];
+        t.offset[c] = -1;
+        if (ch.type == layout::Type::Zero || ch.type == layout::Type::One) continue;
+        if (ch.type != layout::Type::Float || ch.bits != 32 || ch.shift % 8 != 0) return t;
+        for (unsigned d = 0; d < c; ++d)
+            if (t.offset[d] == static_cast<int8_t>(ch.shift / 8)) return t;  // one field for two channels
+        t.offset[c] = static_cast<int8_t>(ch.shift / 8);
+    }
+    t.bytes = info.bytes;
+    t.valid = true;
+    return t;
+}
+
+const FloatTexel& float_texel(const FormatInfo& info) {
+    static const std::vector<FloatTexel> table = [] {
+        std::vector<FloatTexel> t;
+        for (const FormatInfo& f : format_table()) t.push_back(float_layout(f));
+        return t;
+    }();
+    return table[static_cast<size_t>(&info - format_table().data())];
+}
+
 // layout::decode of an 8-bit UNORM: v / 255 in float.
 float decode_unorm8(uint32_t v) { return static_cast<float>(v) / 255.0f; }
 
@@ -605,6 +641,21 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
                     offset[l] = static_cast<size_t>(lanes.y[l]) * surface->row_pitch() +
                                 static_cast<size_t>(lanes.x[l]) * 4;
                 merge_unorm8(s.blend, fmt, *surface, mask, src, offset, write);
+                continue;
+            }
+        }
+
+        if (!srgb && !in.generic_path && !s.blend.enable) {
+            const FloatTexel& fmt = float_texel(*info);
+            if (fmt.valid) {
+                std::byte* const bytes = surface->bytes().data();
+                for (unsigned l = 0; l < kLanes; ++l) {
+                    if (!(write >> l & 1u)) continue;  // lane order: a repeated pixel keeps the later lane
+                    std::byte* const texel = bytes + static_cast<size_t>(lanes.y[l]) * surface->row_pitch() +
+                                             static_cast<size_t>(lanes.x[l]) * fmt.bytes;
+                    for (unsigned c = 0; c < 4; ++c)
+                        if (fmt.offset[c] >= 0 && (mask >> c & 1u)) std::memcpy(texel + fmt.offset[c], &src[c].v[l], 4);
+                }
                 continue;
             }
         }

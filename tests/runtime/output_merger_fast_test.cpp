@@ -1,5 +1,6 @@
-// The output merger's 8-bit fast path (A8R8G8B8, X8R8G8B8, A8B8G8R8 and X8B8G8R8 targets
-// without sRGB write, blended a batch at a time on the stored bytes) against the per-pixel path
+// The output merger's fast paths (8-bit and wider UNORM targets without sRGB write, blended a
+// batch at a time on the stored bytes; 32-bit float targets without blending, copied into
+// place) against the per-pixel path
 // through Surface::read/write (MergeInput::generic_path): random states and batches must leave
 // the same bytes in every target and in the depth/stencil surface. Plus worked examples.
 #include <gtest/gtest.h>
@@ -108,14 +109,14 @@ private:
     std::mt19937 rng_;
 };
 
-// Render-target colour formats, with the fast path's four weighted up.
+// Render-target colour formats, with the fast paths' 8-bit and 32-bit float ones weighted up.
 std::vector<Format> target_formats() {
     std::vector<Format> formats;
     for (const FormatInfo& info : format_table())
         if (info.render_target && info.kind == FormatKind::Color) formats.push_back(info.format);
     for (int i = 0; i < 3; ++i)
         formats.insert(formats.end(), {Format::A8R8G8B8, Format::A8R8G8B8, Format::X8R8G8B8, Format::A8B8G8R8,
-                                       Format::X8B8G8R8});
+                                       Format::X8B8G8R8, Format::R32F, Format::G32R32F, Format::A32B32G32R32F});
     return formats;
 }
 
