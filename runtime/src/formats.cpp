@@ -5,6 +5,7 @@
 #include "sm2/runtime/formats.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -142,7 +143,23 @@ constexpr size_t kFormatCount = std::size(kFormats);
 constexpr auto kDecoders = make_decoders(std::make_index_sequence<kFormatCount>{});
 constexpr auto kEncoders = make_encoders(std::make_index_sequence<kFormatCount>{});
 
+// Every format value below 256 (all but the FOURCC codes) indexes this table directly: the
+// output merger and the sampler look a format up per batch.
+constexpr size_t kDirectFormats = 256;
+static_assert(kFormatCount < 256, "table indices fit a byte");
+constexpr auto kDirectIndex = [] {
+    std::array<uint8_t, kDirectFormats> index{};
+    index.fill(static_cast<uint8_t>(kFormatCount));
+    for (size_t i = 0; i < kFormatCount; ++i) {
+        const auto value = static_cast<uint32_t>(kFormats[i].format);
+        if (value < kDirectFormats && index[value] == kFormatCount) index[value] = static_cast<uint8_t>(i);
+    }
+    return index;
+}();
+
 size_t table_index(Format format) {
+    const auto value = static_cast<uint32_t>(format);
+    if (value < kDirectFormats) return kDirectIndex[value];
     for (size_t i = 0; i < kFormatCount; ++i)
         if (kFormats[i].format == format) return i;
     return kFormatCount;

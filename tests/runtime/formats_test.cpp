@@ -55,6 +55,9 @@ TEST(Formats, Table) {
     EXPECT_TRUE(format_info(Format::A8R8G8B8)->srgb);
     EXPECT_FALSE(format_info(Format::R16F)->srgb);
     for (const FormatInfo& info : format_table()) EXPECT_EQ(format_info(info.format), &info);
+    // Values that name no format: below 256 (looked up directly) and above (FOURCC codes).
+    for (uint32_t value : {19u, 255u, 256u, 0x31545845u, 0xFFFFFFFFu})
+        EXPECT_EQ(format_info(static_cast<Format>(value)), nullptr) << value;
 }
 
 TEST(Formats, EightBitColour) {
