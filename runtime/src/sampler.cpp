@@ -1110,6 +1110,31 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
     }
     const BlockTaps tx = block_taps(c, _mm512_load_ps(in.u.data()), w, c.address[0], linear);
     const BlockTaps ty = block_taps(c, _mm512_load_ps(in.v.data()), h, c.address[1], linear);
+    if (!linear) {
+        // Every lane POINT (a POINT stage, or magnified under a POINT MAGFILTER): each lane's one
+        // texel t00, as the sums below leave POINT lanes, without fetching the other three taps.
+        __m512i at = _mm512_mullo_epi32(ty.i0, row);
+        auto outside = static_cast<__mmask16>(tx.outside0 | ty.outside0);
+        if (c.volume) {
+            const __m512i d = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.depth.data()));
+            const __m512i slice = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.slice.data()));
+            const BlockTaps tz = block_taps(c, _mm512_load_ps(in.w.data()), d, c.address[2], linear);
+            at = _mm512_add_epi32(at, _mm512_mullo_epi32(tz.i0, slice));
+            outside = static_cast<__mmask16>(outside | tz.outside0);
+        }
+        __m512i word0, word1 = _mm512_setzero_si512();
+        if (levels.texel_bytes == 8) {
+            block_pairs(levels, address, _mm512_add_epi32(at, _mm512_slli_epi32(tx.i0, 3)), 0xFFFF, word0, word1);
+        } else if (levels.texel_bytes == 4) {
+            word0 = block_words(levels, address, _mm512_add_epi32(at, _mm512_slli_epi32(tx.i0, 2)), 0xFFFF);
+        } else {
+            const auto shift = static_cast<unsigned>(levels.texel_bytes == 2 ? 1 : 0);
+            word0 = block_narrow_words(levels, address, _mm512_add_epi32(at, _mm512_slli_epi32(tx.i0, shift)), 0xFFFF);
+        }
+        for (unsigned k = 0; k < 4; ++k)
+            out[k] = block_tap<Srgb, WideUnorm>(c, format[k].high != 0 ? word1 : word0, format[k], k, outside);
+        return;
+    }
     const __m512 one = _mm512_set1_ps(1.0f);
     const __m512 bx = _mm512_sub_ps(one, tx.a), by = _mm512_sub_ps(one, ty.a);
     if (c.volume) {
