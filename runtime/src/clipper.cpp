@@ -119,6 +119,11 @@ GuardBand guard_band(const Viewport& vp) {
     return {axis(vp.x, vp.width), axis(vp.y, vp.height)};
 }
 
+uint32_t vertex_clip_code(const ClipVertex& v, const ClipState& s) {
+    if (!finite_position(v)) return 1u << 31;  // above every plane's bit
+    return outcode(v, active_planes(s), s);
+}
+
 ClipResult clip_triangle(const ClipVertex& a, const ClipVertex& b, const ClipVertex& c,
                          const ClipState& s, ClippedPolygon& out) {
     if (!finite_position(a) || !finite_position(b) || !finite_position(c)) return ClipResult::Outside;

@@ -397,6 +397,19 @@ std::vector<PrimitiveSetup> setup_primitives(PrimitiveType type, FillMode fill_m
     std::vector<PrimitiveSetup> setups;
     setups.reserve(primitives.size());
     ClippedPolygon polygon;
+    // Solid triangles: each shaded vertex's clip code and, where no plane cuts it, its screen
+    // position, worked out once (a vertex serves about six triangles of a mesh).
+    const bool solid_triangles = type >= PrimitiveType::TriangleList && fill_mode == FillMode::Solid;
+    std::vector<uint32_t> codes;
+    std::vector<ScreenPosition> screen;
+    if (solid_triangles && primitives.size() > 1) {
+        codes.resize(shaded.size());
+        screen.resize(shaded.size());
+        for (size_t v = 0; v < shaded.size(); ++v) {
+            codes[v] = vertex_clip_code(shaded[v], clip);
+            if (codes[v] == 0) screen[v] = to_screen(shaded[v].position, state.viewport);
+        }
+    }
     for (const Primitive& p : primitives) {
         const ClipVertex& v0 = shaded[slots[p.v[0]]];
         const ClipVertex& provoking = shaded[slots[p.provoking]];
@@ -413,6 +426,15 @@ std::vector<PrimitiveSetup> setup_primitives(PrimitiveType type, FillMode fill_m
             continue;
         }
         const ClipVertex& v2 = shaded[slots[p.v[2]]];
+        if (!codes.empty()) {
+            const uint32_t i0 = slots[p.v[0]], i1 = slots[p.v[1]], i2 = slots[p.v[2]];
+            if ((codes[i0] | codes[i1] | codes[i2]) == 0) {  // clip_triangle()'s Inside
+                setups.emplace_back();
+                if (!setup_triangle(v0, v1, v2, {screen[i0], screen[i1], screen[i2]}, provoking, state, setups.back()))
+                    setups.pop_back();
+                continue;
+            }
+        }
         const ClipResult result = clip_triangle(v0, v1, v2, clip, polygon);
         if (result == ClipResult::Outside) continue;
         if (fill_mode != FillMode::Solid) {

@@ -106,9 +106,15 @@ std::optional<bool> screen_winding(const ClipVertex& v0, const ClipVertex& v1, c
 
 bool setup_triangle(const ClipVertex& v0, const ClipVertex& v1, const ClipVertex& v2,
                     const ClipVertex& provoking, const SetupState& state, PrimitiveSetup& out) {
-    const ScreenPosition s[3] = {to_screen(v0.position, state.viewport),
-                                 to_screen(v1.position, state.viewport),
-                                 to_screen(v2.position, state.viewport)};
+    return setup_triangle(v0, v1, v2,
+                          {to_screen(v0.position, state.viewport), to_screen(v1.position, state.viewport),
+                           to_screen(v2.position, state.viewport)},
+                          provoking, state, out);
+}
+
+bool setup_triangle(const ClipVertex& v0, const ClipVertex& v1, const ClipVertex& v2,
+                    const std::array<ScreenPosition, 3>& s, const ClipVertex& provoking, const SetupState& state,
+                    PrimitiveSetup& out) {
     int64_t X[3], Y[3];
     for (int i = 0; i < 3; ++i) {
         X[i] = snap(s[i].x);

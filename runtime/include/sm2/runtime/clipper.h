@@ -85,6 +85,10 @@ enum class ClipResult : uint8_t {
 [[nodiscard]] ClipResult clip_triangle(const ClipVertex& a, const ClipVertex& b,
                                        const ClipVertex& c, const ClipState& state,
                                        ClippedPolygon& out);
+// 0 when no plane cuts the vertex and its position is finite: a triangle of three such vertices
+// is one clip_triangle() leaves Inside (the set-up works this out once per shaded vertex
+// instead of three times per triangle).
+[[nodiscard]] uint32_t vertex_clip_code(const ClipVertex& v, const ClipState& state);
 // Lines: out[0], out[1] get the clipped end points (copies when Inside).
 [[nodiscard]] ClipResult clip_line(const ClipVertex& a, const ClipVertex& b,
                                    const ClipState& state, std::array<ClipVertex, 2>& out);

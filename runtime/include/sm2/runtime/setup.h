@@ -123,6 +123,11 @@ struct ScreenPosition {
 [[nodiscard]] bool setup_triangle(const ClipVertex& v0, const ClipVertex& v1, const ClipVertex& v2,
                                   const ClipVertex& provoking, const SetupState& state,
                                   PrimitiveSetup& out);
+// The same with the vertices' to_screen() positions already worked out (once per shaded vertex
+// for the triangles no plane cuts).
+[[nodiscard]] bool setup_triangle(const ClipVertex& v0, const ClipVertex& v1, const ClipVertex& v2,
+                                  const std::array<ScreenPosition, 3>& screen, const ClipVertex& provoking,
+                                  const SetupState& state, PrimitiveSetup& out);
 [[nodiscard]] bool setup_line(const ClipVertex& v0, const ClipVertex& v1,
                               const ClipVertex& provoking, const SetupState& state,
                               PrimitiveSetup& out);
