@@ -345,6 +345,12 @@ bool source_over(const BlendState& b) {
            b.src_alpha == Blend::SrcAlpha && b.dst_alpha == Blend::InvSrcAlpha && b.op_alpha == BlendOp::Add;
 }
 
+// Additive blending (ONE, ONE, ADD for colour and alpha): s * 1 + d * 1 is s + d exactly.
+bool additive(const BlendState& b) {
+    return b.src == Blend::One && b.dst == Blend::One && b.op == BlendOp::Add && b.src_alpha == Blend::One &&
+           b.dst_alpha == Blend::One && b.op_alpha == BlendOp::Add;
+}
+
 // saturate() for 16 lanes: NaN and -0 -> +0.
 SM2_AVX512 inline __m512 saturate16(__m512 v) {
     const __m512 c = _mm512_maskz_mov_ps(_mm512_cmp_ps_mask(v, _mm512_setzero_ps(), _CMP_GT_OQ), v);
@@ -419,6 +425,8 @@ SM2_AVX512 void merge_unorm8_avx512(const BlendState& b, const Unorm8Texel& fmt,
             const __m512 alpha = out[3], keep = _mm512_sub_ps(_mm512_set1_ps(1.0f), out[3]);
             for (unsigned c = 0; c < 4; ++c)
                 out[c] = saturate16(_mm512_add_ps(_mm512_mul_ps(out[c], alpha), _mm512_mul_ps(dst[c], keep)));
+        } else if (additive(b)) {
+            for (unsigned c = 0; c < 4; ++c) out[c] = saturate16(_mm512_add_ps(out[c], dst[c]));
         } else {
             Rgba<Lanes> clamped, previous, blended;
             for (unsigned c = 0; c < 4; ++c) {

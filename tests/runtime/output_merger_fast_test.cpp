@@ -148,6 +148,13 @@ RenderState random_state(Random& r) {
         rs.dest_blend_alpha = Blend::InvSrcAlpha;
         rs.blend_op_alpha = BlendOp::Add;
     }
+    if (r.chance(0.15)) {  // additive (ONE, ONE, ADD), which the block path also blends in registers
+        rs.src_blend = rs.dest_blend = Blend::One;
+        rs.blend_op = BlendOp::Add;
+        rs.separate_alpha_blend_enable = r.chance(0.2);
+        rs.src_blend_alpha = rs.dest_blend_alpha = Blend::One;
+        rs.blend_op_alpha = BlendOp::Add;
+    }
     for (uint32_t& m : rs.color_write_enable) m = r.chance(0.5) ? 0xF : r.below(16);
     rs.fog_enable = r.chance(0.3);
     rs.fog_table_mode = r.pick<FogMode>(0, 3);
