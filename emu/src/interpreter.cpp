@@ -32,12 +32,16 @@ public:
           fast_(std::is_same_v<Real, float> && transcendentals == Transcendentals::Fast) {}
 
     void run(std::span<const Step> steps) {
-        for (const Step& step : steps) run_step(step);
+        for (const Step& step : steps) {
+            run_step(step);
+            if (step.opcode == Opcode::TexKill && kernels::stop_after_texkill(batch_)) return;
+        }
     }
     void run(std::span<const Step> steps, const StepObserver& observer) {
         for (size_t i = 0; i < steps.size(); ++i) {
             run_step(steps[i]);
             observer(i, steps[i]);
+            if (steps[i].opcode == Opcode::TexKill && kernels::stop_after_texkill(batch_)) return;
         }
     }
 

@@ -302,6 +302,12 @@ inline void mova(BasicBatch<Real>& batch, const Vector<Real>& a, unsigned mask) 
             for (unsigned l = 0; l < N; ++l) batch.address[c][l] = num::mova_round(a[c][l]);
 }
 
+// Whether a run stops after a texkill (see BasicBatch::stop_when_all_killed).
+template <typename Real>
+inline bool stop_after_texkill(const BasicBatch<Real>& batch) {
+    return batch.stop_when_all_killed && (batch.killed & kAllLanes) == kAllLanes;
+}
+
 // texkill: lanes whose tested components (bit c of `tested`) hold a value below zero.
 template <typename Real>
 inline void texkill(BasicBatch<Real>& batch, const Vector<Real>& a, unsigned tested) {

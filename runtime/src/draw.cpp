@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -235,6 +236,9 @@ void shade_quads(const PixelPipeline& pipe, const PrimitiveSetup& prim, std::spa
         if (!live) return;
     }
     w.batch.killed = 0;
+    // A batch whose lanes a texkill has all killed writes nothing: the shader may stop there.
+    // Pixel history records every fragment's outputs, so its pass runs the whole shader.
+    w.batch.stop_when_all_killed = std::is_same_v<Observer, NoObserver>;
     observer.before_shader(w.batch);
     if (pipe.ps_compiled)
         pipe.ps_compiled->run(*pipe.ps_constants, w.batch, &w.sampler);

@@ -334,6 +334,17 @@ public:
         const bool fast = executable.transcendentals() == Transcendentals::Fast;
         for (const Step& step : steps) {
             if (std::string error = emit_step(step, fast); !error.empty()) return error;
+            if (step.opcode == Opcode::TexKill) {
+                // The interpreter's stop after a texkill that killed every lane (when the batch asks).
+                llvm::Value* stop = nullptr;
+                if (std::string error = call("sm2_k_stop_after_texkill", {batch_}, &stop); !error.empty()) return error;
+                auto* stopped = llvm::BasicBlock::Create(context_, "all_killed", function_);
+                auto* next = llvm::BasicBlock::Create(context_, "after_texkill", function_);
+                builder.CreateCondBr(builder.CreateICmpNE(stop, builder.getInt32(0)), stopped, next);
+                builder.SetInsertPoint(stopped);
+                builder.CreateRetVoid();
+                builder.SetInsertPoint(next);
+            }
         }
         builder.CreateRetVoid();
         return {};
@@ -377,8 +388,9 @@ private:
                                         llvm::ConstantArray::get(type, elements), "sm2_def");
     }
 
-    // Calls kernel `name` with `arguments` (pointers cast to the parameter types).
-    std::string call(const std::string& name, std::vector<llvm::Value*> arguments) {
+    // Calls kernel `name` with `arguments` (pointers cast to the parameter types); its value in
+    // `*result` when asked.
+    std::string call(const std::string& name, std::vector<llvm::Value*> arguments, llvm::Value** result = nullptr) {
         llvm::Function* kernel = module_.getFunction(name);
         if (kernel == nullptr || kernel->isDeclaration()) return "the kernel bitcode has no " + name;
         if (kernel->arg_size() != arguments.size()) return "kernel " + name + " takes other arguments";
@@ -389,7 +401,8 @@ private:
                 return "kernel " + name + " takes other arguments";
             arguments[i] = builder_->CreatePointerCast(arguments[i], wanted);
         }
-        builder_->CreateCall(kernel, arguments);
+        llvm::Value* value = builder_->CreateCall(kernel, arguments);
+        if (result != nullptr) *result = value;
         return {};
     }
 

@@ -86,6 +86,10 @@ void sm2_k_texkill(void* __restrict batch, const float* __restrict a, unsigned t
     k::texkill(batch_of(batch), vector(a), tested);
 }
 
+unsigned sm2_k_stop_after_texkill(const void* __restrict batch) {
+    return k::stop_after_texkill(batch_of(batch)) ? 1u : 0u;
+}
+
 // (The batch is not __restrict here: the sampler is foreign code.)
 void sm2_k_tex(float* __restrict result, const float* __restrict a, const void* batch, unsigned sampler_index,
                unsigned variant, void* sampler, sm2_sample_fn sample) {

@@ -382,6 +382,7 @@ emu::ConstantFile random_constants(Random& random, unsigned count) {
     for (unsigned b = 0; b < batches; ++b) {
         auto input = std::make_unique<emu::Batch>();
         randomize(*input, random, static_cast<unsigned>(constants.registers.size()));
+        input->stop_when_all_killed = b % 2 == 1;  // both engines stop at a texkill that kills every lane
         auto by_interpreter = std::make_unique<emu::Batch>(*input);
         auto by_jit = std::make_unique<emu::Batch>(*input);
         RecordingSampler interpreter_sampler, jit_sampler;

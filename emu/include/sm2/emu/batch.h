@@ -68,6 +68,11 @@ struct BasicBatch {
     // Pixel shaders: lanes discarded by texkill. They keep executing as helper lanes so the
     // derivatives of their quad stay defined; the output merger drops their writes.
     LaneMask killed = 0;
+    // A run may stop at a texkill that leaves every lane killed (both engines check after each
+    // texkill): a draw sets it, since the output merger drops killed lanes and nothing else reads
+    // a batch's results; the outputs then keep what they held. Off by default (sm2 run, the
+    // debugger and pixel history show every output), and reset() leaves it as it is.
+    bool stop_when_all_killed = false;
     alignas(64) std::array<Register, slot::kCount> registers{};
     // a0 (vs_2_0: four integer components), set by mova.
     alignas(64) std::array<std::array<int32_t, kBatchLanes>, 4> address{};
