@@ -1025,6 +1025,24 @@ SM2_AVX512 __attribute__((always_inline)) inline __m512i block_narrow_words(cons
     return words;
 }
 
+// A hint for the batches that follow: the texels two and three pixel rows below lane 0 (the
+// top-left pixel of the batch's first quad), extrapolated from lane 0 to lane 2 (the pixel
+// below it) in `in_level`, the lanes' byte offsets in their level. A batch covers two pixel
+// rows of its tile and the next quad row comes four batches later, so on a texture read near
+// one texel per pixel (a G-buffer, a screen-space pass) these are the lines it will wait on
+// otherwise. A prefetch never faults, so an extrapolation off the level costs nothing but the
+// instruction.
+SM2_AVX512 __attribute__((always_inline)) inline void prefetch_rows_below(const BlockLevels& levels, const BlockAddress& a,
+                                                                          __m512i in_level) {
+    const __m128i first = _mm512_castsi512_si128(in_level);
+    const int64_t here = _mm_cvtsi128_si32(first), below = _mm_extract_epi32(first, 2);
+    const std::byte* base = levels.offsets32 ? levels.anchor + _mm_cvtsi128_si32(_mm512_castsi512_si128(a.start))
+                                             : reinterpret_cast<const std::byte*>(_mm_cvtsi128_si64(_mm512_castsi512_si128(a.base_lo)));
+    const int64_t step = below - here;
+    _mm_prefetch(reinterpret_cast<const char*>(base + here + 2 * step), _MM_HINT_T0);
+    _mm_prefetch(reinterpret_cast<const char*>(base + here + 3 * step), _MM_HINT_T0);
+}
+
 // The four taps (x0, y0), (x1, y0), (x0, y1), (x1, y1) of one slice (`slice`: the byte offset
 // of the lanes' slice in their level), as t[tap][word]: word 1 is the second 32-bit word of
 // 8-byte texels.
@@ -1123,6 +1141,7 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
             outside = static_cast<__mmask16>(outside | tz.outside0);
         }
         __m512i word0, word1 = _mm512_setzero_si512();
+        prefetch_rows_below(levels, address, _mm512_add_epi32(at, _mm512_mullo_epi32(tx.i0, _mm512_set1_epi32(static_cast<int32_t>(levels.texel_bytes)))));
         if (levels.texel_bytes == 8) {
             block_pairs(levels, address, _mm512_add_epi32(at, _mm512_slli_epi32(tx.i0, 3)), 0xFFFF, word0, word1);
         } else if (levels.texel_bytes == 4) {
