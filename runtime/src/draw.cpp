@@ -260,7 +260,7 @@ void process_tile(const PixelPipeline& pipe, std::span<const PrimitiveSetup> set
     for (uint32_t index : primitives) {
         const PrimitiveSetup& prim = setups[index];
         w.quads.clear();
-        rasterize(prim, region, w.quads);
+        rasterize(prim, region, w.quads, pipe.reference_paths);
         for (size_t q = 0; q < w.quads.size(); q += emu::kBatchQuads) {
             const size_t n = std::min<size_t>(emu::kBatchQuads, w.quads.size() - q);
             shade_quads(pipe, prim, std::span<const Quad>(w.quads).subspan(q, n), w, none);

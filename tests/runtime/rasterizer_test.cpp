@@ -30,9 +30,9 @@ SetupState state32() {
     return s;
 }
 
-std::set<Pixel> pixels_of(const PrimitiveSetup& p, const PixelRect& region = {0, 0, 32, 32}) {
+std::set<Pixel> pixels_of(const PrimitiveSetup& p, const PixelRect& region = {0, 0, 32, 32}, bool portable = false) {
     std::vector<Quad> quads;
-    rasterize(p, region, quads);
+    rasterize(p, region, quads, portable);
     std::set<Pixel> out;
     for (const Quad& q : quads) {
         EXPECT_EQ(q.x % 2, 0);
@@ -131,7 +131,10 @@ TEST(Rasterizer, JitteredMeshCoversEachPixelOnce) {
 
 TEST(Rasterizer, QuadWalkMatchesThePixelRule) {
     // rasterize() (corner rejection, whole-region acceptance, stepped edge functions) gives
-    // exactly the pixels covers() accepts, for pseudo-random triangles and odd regions.
+    // exactly the pixels covers() accepts, for pseudo-random triangles and odd regions (up to 39
+    // pixels wide: rows of 1 to 20 quads, so the vector loop's groups of 8 end anywhere), with
+    // its vector loop (where the CPU has one) and with the portable loop; both give the same
+    // quads in the same order.
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> pos(-6.0, 38.0);
     std::uniform_int_distribution<int32_t> edge(-3, 35);
@@ -147,6 +150,14 @@ TEST(Rasterizer, QuadWalkMatchesThePixelRule) {
             for (int32_t x = region.left; x < region.right; ++x)
                 if (covers(p, x, y)) expect.insert({x, y});
         EXPECT_EQ(pixels_of(p, region), expect) << n;
+        EXPECT_EQ(pixels_of(p, region, true), expect) << n;
+        std::vector<Quad> fast, portable;
+        rasterize(p, region, fast);
+        rasterize(p, region, portable, true);
+        ASSERT_EQ(fast.size(), portable.size()) << n;
+        for (size_t q = 0; q < fast.size(); ++q)
+            EXPECT_TRUE(fast[q].x == portable[q].x && fast[q].y == portable[q].y && fast[q].mask == portable[q].mask)
+                << n << " quad " << q;
     }
 }
 

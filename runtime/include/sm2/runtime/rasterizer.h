@@ -42,7 +42,9 @@ struct Quad {
 [[nodiscard]] bool covers(const PrimitiveSetup& prim, int32_t px, int32_t py);
 
 // Appends the quads with at least one covered pixel inside `region`, rows of quads from top to
-// bottom, each row left to right. Pixels outside `region` are not in any mask.
-void rasterize(const PrimitiveSetup& prim, const PixelRect& region, std::vector<Quad>& quads);
+// bottom, each row left to right. Pixels outside `region` are not in any mask. Triangles that
+// cover part of the region take an AVX-512 loop (8 quads at a time) where the CPU has it;
+// `portable` forces the scalar loop, which gives the same quads (DeviceOptions::reference_paths).
+void rasterize(const PrimitiveSetup& prim, const PixelRect& region, std::vector<Quad>& quads, bool portable = false);
 
 }  // namespace sm2::runtime
