@@ -347,8 +347,10 @@ template <typename Real, typename Sample>
 inline void texture(Vector<Real>& result, const Vector<Real>& a, const BasicBatch<Real>& batch, Sample&& sample) {
     alignas(64) Texels coordinates;
     alignas(64) Texels texels;
+    // NaN made canonical here too: a value the JIT keeps in a temporary may hold any NaN
+    // (store_register), and the sign of a NaN coordinate picks a cube face.
     for (unsigned c = 0; c < 4; ++c)
-        for (unsigned l = 0; l < N; ++l) coordinates[c][l] = static_cast<float>(a[c][l]);
+        for (unsigned l = 0; l < N; ++l) coordinates[c][l] = num::canonical_nan(static_cast<float>(a[c][l]));
     sample(coordinates, texels, batch.lane_count, batch.killed);
     for (unsigned c = 0; c < 4; ++c)
         for (unsigned l = 0; l < N; ++l) result[c][l] = static_cast<Real>(texels[c][l]);
@@ -356,10 +358,17 @@ inline void texture(Vector<Real>& result, const Vector<Real>& a, const BasicBatc
 
 // --- store ------------------------------------------------------------------------------------
 
-// The result channels of the mask, saturated (_sat), rounded to the precision mode and with NaN
-// made canonical (numerics.h), into the destination slot.
+// The result channels of the mask, saturated (_sat), rounded to the precision mode and, where
+// `canonical`, with NaN made canonical (numerics.h), into the destination slot.
+// The interpreter stores every result canonical (the debugger and traces show its registers).
+// The JIT does not on the temporaries it keeps to itself: no rule reads the payload or sign of
+// a NaN but a cube lookup's face choice, whose coordinates texture() makes canonical, so an
+// intermediate NaN's bits never reach a result, and every value that leaves the compiled code
+// (outputs, a0) is stored canonical. JitDifferential checks it with NaN payloads everywhere and
+// a sampler whose texels hash the coordinates' bits.
 template <typename Real>
-inline void store_register(Vector<Real>& reg, Vector<Real>& r, unsigned mask, bool saturate, ResultRounding rounding) {
+inline void store_register(Vector<Real>& reg, Vector<Real>& r, unsigned mask, bool saturate, ResultRounding rounding,
+                           bool canonical) {
     for (unsigned c = 0; c < 4; ++c) {
         if (!has(mask, c)) continue;
         Lanes<Real>& v = r[c];
@@ -370,7 +379,7 @@ inline void store_register(Vector<Real>& reg, Vector<Real>& r, unsigned mask, bo
             for (unsigned l = 0; l < N; ++l) v[l] = num::round_result(v[l], ResultRounding::Fp24);
         else if (rounding == ResultRounding::Fp16)
             for (unsigned l = 0; l < N; ++l) v[l] = num::round_result(v[l], ResultRounding::Fp16);
-        if (!saturate)  // (a saturated value is never NaN)
+        if (canonical && !saturate)  // (a saturated value is never NaN)
             for (unsigned l = 0; l < N; ++l) v[l] = num::canonical_nan(v[l]);
         reg[c] = v;
     }
@@ -379,7 +388,7 @@ inline void store_register(Vector<Real>& reg, Vector<Real>& r, unsigned mask, bo
 template <typename Real>
 inline void store(BasicBatch<Real>& batch, unsigned slot, Vector<Real>& r, unsigned mask, bool saturate,
                   ResultRounding rounding) {
-    store_register(batch.registers[slot], r, mask, saturate, rounding);
+    store_register(batch.registers[slot], r, mask, saturate, rounding, true);
 }
 
 }  // namespace sm2::emu::kernels

@@ -23,8 +23,8 @@
 //    plain calls marked nobuiltin, and the target library info says these functions are
 //    unknown;
 //  - which NaN an operation on two NaNs returns depends on the order a compiler gives the
-//    operands; the store kernel makes every stored NaN the canonical one (numerics.h), on both
-//    sides.
+//    operands; the store kernel makes every NaN stored into the batch the canonical one
+//    (numerics.h), on both sides; temporaries kept in the function skip it (store_register).
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -467,8 +467,10 @@ private:
         }
         }
         if (step.dest.slot >= kSlotCount) return "destination slot out of range";
-        return call("sm2_k_store_register", {register_pointer(step.dest.slot), result_, u32(mask),
-                                             u32(step.dest.saturate), u32(static_cast<unsigned>(step.dest.rounding))});
+        // NaN canonical only in what leaves the function (store_register in step_kernels.h).
+        return call("sm2_k_store_register",
+                    {register_pointer(step.dest.slot), result_, u32(mask), u32(step.dest.saturate),
+                     u32(static_cast<unsigned>(step.dest.rounding)), u32(is_temp_slot(step.dest.slot) ? 0 : 1)});
     }
 
     llvm::Module& module_;

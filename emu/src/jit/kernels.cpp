@@ -100,8 +100,9 @@ void sm2_k_tex(float* __restrict result, const float* __restrict a, const void* 
 }
 
 void sm2_k_store_register(float* __restrict reg, float* __restrict result, unsigned mask, unsigned saturate,
-                          unsigned rounding) {
-    k::store_register(vector(reg), vector(result), mask, saturate != 0, static_cast<ResultRounding>(rounding));
+                          unsigned rounding, unsigned canonical) {
+    k::store_register(vector(reg), vector(result), mask, saturate != 0, static_cast<ResultRounding>(rounding),
+                      canonical != 0);
 }
 
 }  // extern "C"
