@@ -28,8 +28,8 @@ inline Real mul(Real a, Real b) {
     // Computed unconditionally and selected with `|` rather than `||`: no branch, so the lane
     // loops stay vectorizable.
     const Real product = a * b;
-    const bool either_zero = (a == Real(0)) | (b == Real(0));
-    return either_zero ? Real(0) : product;
+    const bool neither_zero = (a != Real(0)) & (b != Real(0));  // (NaN != 0)
+    return neither_zero ? product : Real(0);
 }
 // mad: the product rounded, then the sum rounded (no fused multiply-add).
 template <typename Real>
