@@ -1,5 +1,6 @@
 // Shader engine throughput: lanes x executed instructions per second for representative shaders
-// in every precision mode and both transcendental modes. Reported, never asserted.
+// in every precision mode and both transcendental modes (the interpreter), and of the JIT's
+// compiled code in fp32 (jit/...). Reported, never asserted.
 //   build/release/bench/shader_bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
@@ -12,6 +13,7 @@
 
 #include "sm2/assembler/assembler.h"
 #include "sm2/emu/engine.h"
+#include "sm2/emu/jit.h"
 
 namespace {
 
@@ -151,7 +153,51 @@ void transcendental_benchmark(benchmark::State& state, const std::string& instru
     run<emu::Batch>(state, *lowered.executable, constants, nullptr);
 }
 
+// The compiled shader (fp32, exact transcendentals) of a sample file, one batch a call: the
+// JIT's own speed, without the pipeline around it.
+void jit_benchmark(benchmark::State& state, const std::string& file) {
+    if (!emu::jit::available()) {
+        state.SkipWithError("no JIT in this build");
+        return;
+    }
+    auto assembled = assembler::assemble(read_sample(file));
+    if (!assembled.ok()) {
+        state.SkipWithError(("cannot assemble " + file).c_str());
+        return;
+    }
+    auto shader = emu::Shader::create(*assembled.program);
+    auto lowered = emu::lower(*shader.shader, emu::StaticFlowConstants{}, emu::LoweringOptions{});
+    if (!lowered.executable) {
+        state.SkipWithError(lowered.error.c_str());
+        return;
+    }
+    std::string error;
+    const auto compiled = emu::jit::compile(*lowered.executable, &error);
+    if (!compiled) {
+        state.SkipWithError(error.c_str());
+        return;
+    }
+    std::vector<std::array<float, 4>> app(256, {0.5f, 0.25f, 0.125f, 1.0f});
+    const emu::ConstantFile constants = lowered.executable->bind_constants(app);
+    CheckerSampler sampler;
+    auto batch = std::make_unique<emu::Batch>();
+    for (unsigned lane = 0; lane < emu::kBatchLanes; ++lane)
+        for (unsigned s = emu::slot::kInputFirst; s < emu::slot::kTexCoordFirst + emu::slot::kTexCoordCount; ++s)
+            for (unsigned c = 0; c < 4; ++c) batch->registers[s][c][lane] = 0.1f * static_cast<float>(lane + c + 1);
+    for (auto _ : state) {
+        compiled->run(constants, *batch, &sampler);
+        benchmark::DoNotOptimize(batch->registers[emu::slot::kPosition][0][0]);
+    }
+    const double work = static_cast<double>(lowered.executable->executed_instructions()) * emu::kBatchLanes;
+    state.counters["lane_instr/s"] = benchmark::Counter(work, benchmark::Counter::kIsIterationInvariantRate);
+    state.SetLabel("jit fp32");
+}
+
 void register_all() {
+    for (const char* file : {"alu64.ps.asm", "textured_phong.ps.asm"})
+        benchmark::RegisterBenchmark((std::string("jit/") + file).c_str(),
+                                     [file = std::string(file)](benchmark::State& s) { jit_benchmark(s, file); });
+
     for (const char* instruction : {"exp", "log", "pow", "sincos"})
         for (const auto mode : {emu::Transcendentals::Exact, emu::Transcendentals::Fast})
             benchmark::RegisterBenchmark(
