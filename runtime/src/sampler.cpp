@@ -1036,11 +1036,15 @@ SM2_AVX512 __attribute__((always_inline)) inline void prefetch_rows_below(const 
                                                                           __m512i in_level) {
     const __m128i first = _mm512_castsi512_si128(in_level);
     const int64_t here = _mm_cvtsi128_si32(first), below = _mm_extract_epi32(first, 2);
-    const std::byte* base = levels.offsets32 ? levels.anchor + _mm_cvtsi128_si32(_mm512_castsi512_si128(a.start))
-                                             : reinterpret_cast<const std::byte*>(_mm_cvtsi128_si64(_mm512_castsi512_si128(a.base_lo)));
+    // Addresses as integers: the extrapolation may point outside the level, where pointer
+    // arithmetic would be undefined; unsigned arithmetic wraps, and a prefetch never faults.
+    const uintptr_t base =
+        levels.offsets32
+            ? reinterpret_cast<uintptr_t>(levels.anchor) + static_cast<uint32_t>(_mm_cvtsi128_si32(_mm512_castsi512_si128(a.start)))
+            : static_cast<uintptr_t>(_mm_cvtsi128_si64(_mm512_castsi512_si128(a.base_lo)));
     const int64_t step = below - here;
-    _mm_prefetch(reinterpret_cast<const char*>(base + here + 2 * step), _MM_HINT_T0);
-    _mm_prefetch(reinterpret_cast<const char*>(base + here + 3 * step), _MM_HINT_T0);
+    _mm_prefetch(reinterpret_cast<const char*>(base + static_cast<uintptr_t>(here + 2 * step)), _MM_HINT_T0);
+    _mm_prefetch(reinterpret_cast<const char*>(base + static_cast<uintptr_t>(here + 3 * step)), _MM_HINT_T0);
 }
 
 // The four taps (x0, y0), (x1, y0), (x0, y1), (x1, y1) of one slice (`slice`: the byte offset
