@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -64,9 +65,9 @@ const char* mode_label(const Mode& m) {
     return m.transcendentals == emu::Transcendentals::Fast ? "fp32/fast" : "fp32";
 }
 
-template <typename BatchType>
-void run(benchmark::State& state, const emu::Executable& executable, const emu::ConstantFile& constants,
-         emu::Sampler* sampler) {
+// Times `execute_batch(batch)` on one batch whose inputs vary by lane and component.
+template <typename BatchType, typename Execute>
+void run(benchmark::State& state, const emu::Executable& executable, Execute&& execute_batch) {
     auto batch = std::make_unique<BatchType>();
     for (unsigned lane = 0; lane < emu::kBatchLanes; ++lane)
         for (unsigned s = 0; s < emu::slot::kCount; ++s)
@@ -74,7 +75,7 @@ void run(benchmark::State& state, const emu::Executable& executable, const emu::
                 if (s >= emu::slot::kInputFirst && s < emu::slot::kTexCoordFirst + emu::slot::kTexCoordCount)
                     batch->registers[s][c][lane] = 0.1f * static_cast<float>(lane + c + 1);
     for (auto _ : state) {
-        emu::execute(executable, constants, *batch, sampler);
+        execute_batch(*batch);
         benchmark::DoNotOptimize(batch->registers[emu::slot::kPosition][0][0]);
     }
     const double work = static_cast<double>(executable.executed_instructions()) * emu::kBatchLanes;
@@ -82,31 +83,42 @@ void run(benchmark::State& state, const emu::Executable& executable, const emu::
     state.counters["instr"] = executable.executed_instructions();
 }
 
-void shader_benchmark(benchmark::State& state, const std::string& file, const Mode& mode,
-                      const emu::StaticFlowConstants& flow) {
+// The sample shader `file` assembled and lowered; nothing (the benchmark skipped) on an error.
+std::optional<emu::Executable> lower_sample(benchmark::State& state, const std::string& file,
+                                            const emu::StaticFlowConstants& flow, const emu::LoweringOptions& options) {
     auto assembled = assembler::assemble(read_sample(file));
     if (!assembled.ok()) {
         state.SkipWithError(("cannot assemble " + file).c_str());
-        return;
+        return std::nullopt;
     }
     auto shader = emu::Shader::create(*assembled.program);
+    auto lowered = emu::lower(*shader.shader, flow, options);
+    if (!lowered.executable) state.SkipWithError(lowered.error.c_str());
+    return std::move(lowered.executable);
+}
+
+// The application's constant registers for the sample shaders.
+emu::ConstantFile sample_constants(const emu::Executable& executable) {
+    const std::vector<std::array<float, 4>> app(256, {0.5f, 0.25f, 0.125f, 1.0f});
+    return executable.bind_constants(app);
+}
+
+void shader_benchmark(benchmark::State& state, const std::string& file, const Mode& mode,
+                      const emu::StaticFlowConstants& flow) {
     emu::LoweringOptions options;
     options.precision.precision = mode.precision;
     options.precision.partial_precision_fp16 = mode.pp_fp16;
     options.precision.transcendentals = mode.transcendentals;
-    auto lowered = emu::lower(*shader.shader, flow, options);
-    if (!lowered.executable) {
-        state.SkipWithError(lowered.error.c_str());
-        return;
-    }
-    std::vector<std::array<float, 4>> app(256, {0.5f, 0.25f, 0.125f, 1.0f});
-    const emu::ConstantFile constants = lowered.executable->bind_constants(app);
+    const auto executable = lower_sample(state, file, flow, options);
+    if (!executable) return;
+    const emu::ConstantFile constants = sample_constants(*executable);
     CheckerSampler sampler;
     state.SetLabel(mode_label(mode));
+    auto execute_batch = [&](auto& batch) { emu::execute(*executable, constants, batch, &sampler); };
     if (mode.precision == emu::Precision::Fp64)
-        run<emu::ReferenceBatch>(state, *lowered.executable, constants, &sampler);
+        run<emu::ReferenceBatch>(state, *executable, execute_batch);
     else
-        run<emu::Batch>(state, *lowered.executable, constants, &sampler);
+        run<emu::Batch>(state, *executable, execute_batch);
 }
 
 // 32 independent instances of one transcendental instruction (kept although unused), so the
@@ -150,7 +162,8 @@ void transcendental_benchmark(benchmark::State& state, const std::string& instru
     }
     const emu::ConstantFile constants = lowered.executable->bind_constants();
     state.SetLabel(mode == emu::Transcendentals::Fast ? "fast" : "exact");
-    run<emu::Batch>(state, *lowered.executable, constants, nullptr);
+    run<emu::Batch>(state, *lowered.executable,
+                    [&](emu::Batch& batch) { emu::execute(*lowered.executable, constants, batch, nullptr); });
 }
 
 // The compiled shader (fp32, exact transcendentals) of a sample file, one batch a call: the
@@ -160,37 +173,18 @@ void jit_benchmark(benchmark::State& state, const std::string& file) {
         state.SkipWithError("no JIT in this build");
         return;
     }
-    auto assembled = assembler::assemble(read_sample(file));
-    if (!assembled.ok()) {
-        state.SkipWithError(("cannot assemble " + file).c_str());
-        return;
-    }
-    auto shader = emu::Shader::create(*assembled.program);
-    auto lowered = emu::lower(*shader.shader, emu::StaticFlowConstants{}, emu::LoweringOptions{});
-    if (!lowered.executable) {
-        state.SkipWithError(lowered.error.c_str());
-        return;
-    }
+    const auto executable = lower_sample(state, file, {}, {});
+    if (!executable) return;
     std::string error;
-    const auto compiled = emu::jit::compile(*lowered.executable, &error);
+    const auto compiled = emu::jit::compile(*executable, &error);
     if (!compiled) {
         state.SkipWithError(error.c_str());
         return;
     }
-    std::vector<std::array<float, 4>> app(256, {0.5f, 0.25f, 0.125f, 1.0f});
-    const emu::ConstantFile constants = lowered.executable->bind_constants(app);
+    const emu::ConstantFile constants = sample_constants(*executable);
     CheckerSampler sampler;
-    auto batch = std::make_unique<emu::Batch>();
-    for (unsigned lane = 0; lane < emu::kBatchLanes; ++lane)
-        for (unsigned s = emu::slot::kInputFirst; s < emu::slot::kTexCoordFirst + emu::slot::kTexCoordCount; ++s)
-            for (unsigned c = 0; c < 4; ++c) batch->registers[s][c][lane] = 0.1f * static_cast<float>(lane + c + 1);
-    for (auto _ : state) {
-        compiled->run(constants, *batch, &sampler);
-        benchmark::DoNotOptimize(batch->registers[emu::slot::kPosition][0][0]);
-    }
-    const double work = static_cast<double>(lowered.executable->executed_instructions()) * emu::kBatchLanes;
-    state.counters["lane_instr/s"] = benchmark::Counter(work, benchmark::Counter::kIsIterationInvariantRate);
     state.SetLabel("jit fp32");
+    run<emu::Batch>(state, *executable, [&](emu::Batch& batch) { compiled->run(constants, batch, &sampler); });
 }
 
 void register_all() {
