@@ -1144,16 +1144,20 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
             at = _mm512_add_epi32(at, _mm512_mullo_epi32(tz.i0, slice));
             outside = static_cast<__mmask16>(outside | tz.outside0);
         }
+        // Each lane's texel: its byte offset in the level (texels of 8, 4, 2 or 1 bytes).
+        const auto shift = static_cast<unsigned>(levels.texel_bytes == 8   ? 3
+                                                 : levels.texel_bytes == 4 ? 2
+                                                 : levels.texel_bytes == 2 ? 1
+                                                                           : 0);
+        const __m512i in_level = _mm512_add_epi32(at, _mm512_slli_epi32(tx.i0, shift));
+        prefetch_rows_below(levels, address, in_level);
         __m512i word0, word1 = _mm512_setzero_si512();
-        prefetch_rows_below(levels, address, _mm512_add_epi32(at, _mm512_mullo_epi32(tx.i0, _mm512_set1_epi32(static_cast<int32_t>(levels.texel_bytes)))));
-        if (levels.texel_bytes == 8) {
-            block_pairs(levels, address, _mm512_add_epi32(at, _mm512_slli_epi32(tx.i0, 3)), 0xFFFF, word0, word1);
-        } else if (levels.texel_bytes == 4) {
-            word0 = block_words(levels, address, _mm512_add_epi32(at, _mm512_slli_epi32(tx.i0, 2)), 0xFFFF);
-        } else {
-            const auto shift = static_cast<unsigned>(levels.texel_bytes == 2 ? 1 : 0);
-            word0 = block_narrow_words(levels, address, _mm512_add_epi32(at, _mm512_slli_epi32(tx.i0, shift)), 0xFFFF);
-        }
+        if (levels.texel_bytes == 8)
+            block_pairs(levels, address, in_level, 0xFFFF, word0, word1);
+        else if (levels.texel_bytes == 4)
+            word0 = block_words(levels, address, in_level, 0xFFFF);
+        else
+            word0 = block_narrow_words(levels, address, in_level, 0xFFFF);
         for (unsigned k = 0; k < 4; ++k)
             out[k] = block_tap<Srgb, WideUnorm>(c, format[k].high != 0 ? word1 : word0, format[k], k, outside);
         return;
