@@ -1025,6 +1025,31 @@ SM2_AVX512 __attribute__((always_inline)) inline __m512i block_narrow_words(cons
     return words;
 }
 
+// block_words() for a POINT lookup of 4-byte texels. Where the batch's 4 quads lie side by
+// side and read one texel a pixel (a screen-space pass over a texture of the target's size: a
+// G-buffer, a light buffer), its 16 texels are two runs of 8 in two rows of the level, read by
+// two plain loads instead of a gather.
+SM2_AVX512 __attribute__((always_inline)) inline __m512i block_point_words(const BlockLevels& levels, const BlockAddress& a,
+                                                                           __m512i in_level) {
+    if (levels.offsets32) {
+        const __m512i at = _mm512_add_epi32(a.start, in_level);
+        const __m128i first = _mm512_castsi512_si128(at);
+        const int32_t top = _mm_cvtsi128_si32(first), bottom = _mm_extract_epi32(first, 2);
+        // Lane l's byte in the runs: 4 x its column, row 1 (lanes 2, 3 of each quad) `bottom`.
+        const __m512i column = _mm512_setr_epi32(0, 4, 0, 4, 8, 12, 8, 12, 16, 20, 16, 20, 24, 28, 24, 28);
+        const __m512i expected = _mm512_add_epi32(
+            _mm512_mask_mov_epi32(_mm512_set1_epi32(top), 0xCCCC, _mm512_set1_epi32(bottom)), column);
+        if (_mm512_cmpeq_epi32_mask(at, expected) == 0xFFFF) {
+            // Every byte of the two runs is a lane's texel: both loads lie in the level.
+            const __m256i row0 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(levels.anchor + top));
+            const __m256i row1 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(levels.anchor + bottom));
+            const __m512i from_rows = _mm512_setr_epi32(0, 1, 16, 17, 2, 3, 18, 19, 4, 5, 20, 21, 6, 7, 22, 23);
+            return _mm512_permutex2var_epi32(_mm512_castsi256_si512(row0), from_rows, _mm512_castsi256_si512(row1));
+        }
+    }
+    return block_words(levels, a, in_level, 0xFFFF);
+}
+
 // A hint for the batches that follow: the texels two and three pixel rows below lane 0 (the
 // top-left pixel of the batch's first quad), extrapolated from lane 0 to lane 2 (the pixel
 // below it) in `in_level`, the lanes' byte offsets in their level. A batch covers two pixel
@@ -1155,7 +1180,7 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
         if (levels.texel_bytes == 8)
             block_pairs(levels, address, in_level, 0xFFFF, word0, word1);
         else if (levels.texel_bytes == 4)
-            word0 = block_words(levels, address, in_level, 0xFFFF);
+            word0 = block_point_words(levels, address, in_level);
         else
             word0 = block_narrow_words(levels, address, in_level, 0xFFFF);
         for (unsigned k = 0; k < 4; ++k)

@@ -284,6 +284,58 @@ TEST(SamplerBlockPath, BilinearCentreOfA2x2Texture) {
     }
 }
 
+// A screen-space pass reads one texel a pixel: POINT lookups at the texel centres of batches of
+// 4 quads side by side, whose 16 texels the block path reads as two runs of 8 from the rows of
+// the level where they lie in it (and by a gather where they do not: at the right and bottom
+// edges under CLAMP, at odd offsets, under WRAP past the edge). The same bits as the per-lane
+// path, with 32-bit offsets and with 64-bit addresses.
+TEST(SamplerBlockPath, PointLookupsOfScreenAlignedBatchesReadTheirTexelRows) {
+    std::mt19937 rng(20261129);
+    for (const Format format : {Format::A8R8G8B8, Format::R32F, Format::A2B10G10R10}) {
+        const Texture texture = random_texture(rng, format, 64, 32, 1);  // powers of two: WRAP too
+        for (const bool addresses64 : {false, true}) {
+            TextureSampler block, lanes;
+            block.set_texture(0, &texture);
+            block.set_block_64bit_addresses(addresses64);
+            lanes.set_texture(0, &texture);
+            lanes.set_block_path(false);
+            SamplerState state;
+            state.mag_filter = state.min_filter = TextureFilter::Point;
+            state.mip_filter = TextureFilter::None;
+            for (const TextureAddress mode : {TextureAddress::Clamp, TextureAddress::Wrap}) {
+                state.address_u = state.address_v = mode;
+                for (TextureSampler* s : {&block, &lanes}) s->set_state(0, state);
+                block.prepare();
+                if (cpu_has_avx512()) {
+                    ASSERT_TRUE(block.block_path_applies(0));
+                }
+                // Batches at every column and every other row, to the edges and past them.
+                for (int y0 = -3; y0 < 34; y0 += 2)
+                    for (int x0 = -3; x0 < 66; ++x0) {
+                        std::array<emu::FloatLanes, 4> coords{};
+                        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+                            const int x = x0 + static_cast<int>(2 * (l / 4) + (l & 1u)), y = y0 + static_cast<int>((l >> 1) & 1u);
+                            coords[0][l] = (static_cast<float>(x) + 0.5f) / 64.0f;
+                            coords[1][l] = (static_cast<float>(y) + 0.5f) / 32.0f;
+                        }
+                        emu::TextureRequest request;
+                        request.coordinates = &coords;
+                        std::array<emu::FloatLanes, 4> a, b;
+                        block.sample(request, a);
+                        lanes.sample(request, b);
+                        for (unsigned c = 0; c < 4; ++c)
+                            for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+                                if (std::isnan(a[c][l]) && std::isnan(b[c][l])) continue;
+                                ASSERT_EQ(std::bit_cast<uint32_t>(a[c][l]), std::bit_cast<uint32_t>(b[c][l]))
+                                    << format_info(format)->name << " at " << x0 << ", " << y0 << " channel " << c
+                                    << " lane " << l << (addresses64 ? " (64-bit addresses)" : "");
+                            }
+                    }
+            }
+        }
+    }
+}
+
 // A texture of `count` texels, `width` a row, texel v holding texel(v) in its bytes, POINT-
 // sampled at every texel centre (the block path where the CPU has AVX-512): channel `channel`
 // of texel v must read with the bits expected(v).
