@@ -465,6 +465,42 @@ SM2_AVX512 void merge_unorm8_avx512(const BlendState& b, const Unorm8Texel& fmt,
     }
 }
 
+// The float copy of merge() (32-bit float targets without blending) for the lanes in `write`
+// (inside the surface): each stored channel by one scatter, whose writes to one address keep
+// the later lane's, as the per-lane loop does; a batch of 4 quads side by side on a 4-byte
+// target (R32F) by two row stores.
+SM2_AVX512 void copy_float_avx512(const FloatTexel& fmt, Surface& surface, uint32_t mask, const Rgba<Lanes>& src,
+                                  const PixelLanes& lanes, emu::LaneMask write) {
+    std::byte* const bytes = surface.bytes().data();
+    const auto pitch = static_cast<int32_t>(surface.row_pitch());
+    const __m512i x = _mm512_load_si512(lanes.x.data()), y = _mm512_load_si512(lanes.y.data());
+    const bool run = fmt.bytes == 4 && write == emu::kAllLanes && lanes.quad_count == 4 &&
+                     _mm512_cmpeq_epi32_mask(x, _mm512_add_epi32(_mm512_set1_epi32(lanes.x[0]),
+                                                                 _mm512_setr_epi32(0, 1, 0, 1, 2, 3, 2, 3, 4, 5, 4, 5, 6, 7, 6, 7))) == 0xFFFF &&
+                     _mm512_cmpeq_epi32_mask(y, _mm512_add_epi32(_mm512_set1_epi32(lanes.y[0]),
+                                                                 _mm512_setr_epi32(0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1))) == 0xFFFF;
+    if (run) {
+        // Every lane written, so all 8 texels of both rows lie in the surface.
+        std::byte* const row0 = bytes + static_cast<size_t>(lanes.y[0]) * surface.row_pitch() + static_cast<size_t>(lanes.x[0]) * 4;
+        std::byte* const row1 = row0 + surface.row_pitch();
+        const __m512i to_row0 = _mm512_setr_epi32(0, 1, 4, 5, 8, 9, 12, 13, 0, 0, 0, 0, 0, 0, 0, 0);
+        const __m512i to_row1 = _mm512_setr_epi32(2, 3, 6, 7, 10, 11, 14, 15, 0, 0, 0, 0, 0, 0, 0, 0);
+        for (unsigned c = 0; c < 4; ++c) {
+            if (fmt.offset[c] < 0 || !(mask >> c & 1u)) continue;
+            const __m512 value = _mm512_loadu_ps(src[c].v.data());
+            _mm256_storeu_ps(reinterpret_cast<float*>(row0 + fmt.offset[c]), _mm512_castps512_ps256(_mm512_permutexvar_ps(to_row0, value)));
+            _mm256_storeu_ps(reinterpret_cast<float*>(row1 + fmt.offset[c]), _mm512_castps512_ps256(_mm512_permutexvar_ps(to_row1, value)));
+        }
+        return;
+    }
+    const __m512i where = _mm512_add_epi32(_mm512_mullo_epi32(y, _mm512_set1_epi32(pitch)),
+                                           _mm512_mullo_epi32(x, _mm512_set1_epi32(static_cast<int32_t>(fmt.bytes))));
+    for (unsigned c = 0; c < 4; ++c)
+        if (fmt.offset[c] >= 0 && (mask >> c & 1u))
+            _mm512_mask_i32scatter_ps(bytes + fmt.offset[c], static_cast<__mmask16>(write), where,
+                                      _mm512_loadu_ps(src[c].v.data()), 1);
+}
+
 SM2_AVX512_CODE_END
 
 }  // namespace
@@ -656,6 +692,10 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
         if (!srgb && !in.generic_path && !s.blend.enable) {
             const FloatTexel& fmt = float_texel(*info);
             if (fmt.valid) {
+                if (cpu_has_avx512() && surface->bytes().size() <= size_t{INT32_MAX}) {
+                    copy_float_avx512(fmt, *surface, mask, src, lanes, write);
+                    continue;
+                }
                 std::byte* const bytes = surface->bytes().data();
                 for (unsigned l = 0; l < kLanes; ++l) {
                     if (!(write >> l & 1u)) continue;  // lane order: a repeated pixel keeps the later lane
