@@ -1176,13 +1176,15 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
                                                                            : 0);
         const __m512i in_level = _mm512_add_epi32(at, _mm512_slli_epi32(tx.i0, shift));
         prefetch_rows_below(levels, address, in_level);
-        __m512i word0, word1 = _mm512_setzero_si512();
-        if (levels.texel_bytes == 8)
-            block_pairs(levels, address, in_level, 0xFFFF, word0, word1);
-        else if (levels.texel_bytes == 4)
-            word0 = block_point_words(levels, address, in_level);
-        else
-            word0 = block_narrow_words(levels, address, in_level, 0xFFFF);
+        __m512i word0 = _mm512_setzero_si512(), word1 = _mm512_setzero_si512();
+        if (outside != 0xFFFF) {  // (every lane's texel outside the level, BORDER: nothing to read)
+            if (levels.texel_bytes == 8)
+                block_pairs(levels, address, in_level, 0xFFFF, word0, word1);
+            else if (levels.texel_bytes == 4)
+                word0 = block_point_words(levels, address, in_level);
+            else
+                word0 = block_narrow_words(levels, address, in_level, 0xFFFF);
+        }
         for (unsigned k = 0; k < 4; ++k)
             out[k] = block_tap<Srgb, WideUnorm>(c, format[k].high != 0 ? word1 : word0, format[k], k, outside);
         return;
@@ -1203,7 +1205,10 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
             const auto oz = static_cast<__mmask16>(p == 0 ? tz.outside0 : tz.outside1);
             const auto o00 = static_cast<__mmask16>(tx.outside0 | ty.outside0 | oz), o10 = static_cast<__mmask16>(tx.outside1 | ty.outside0 | oz);
             const auto o01 = static_cast<__mmask16>(tx.outside0 | ty.outside1 | oz), o11 = static_cast<__mmask16>(tx.outside1 | ty.outside1 | oz);
-            const BlockQuad q = block_fetch(levels, address, tx, ty, row, _mm512_mullo_epi32(z, slice));
+            // A slice whose taps all lie outside the level on every lane (BORDER) reads none.
+            const BlockQuad q = (o00 & o10 & o01 & o11) == 0xFFFF
+                                    ? BlockQuad{}
+                                    : block_fetch(levels, address, tx, ty, row, _mm512_mullo_epi32(z, slice));
             const __m512 w00 = _mm512_mul_ps(_mm512_mul_ps(bx, by), wz), w10 = _mm512_mul_ps(_mm512_mul_ps(tx.a, by), wz);
             const __m512 w01 = _mm512_mul_ps(_mm512_mul_ps(bx, ty.a), wz), w11 = _mm512_mul_ps(_mm512_mul_ps(tx.a, ty.a), wz);
             for (unsigned k = 0; k < 4; ++k) {
@@ -1217,7 +1222,6 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
         for (unsigned k = 0; k < 4; ++k) out[k] = _mm512_mask_mov_ps(point[k], linear, _mm512_add_ps(sum[0][k], sum[1][k]));
         return;
     }
-    const BlockQuad q = block_fetch(levels, address, tx, ty, row, _mm512_setzero_si512());
     const __m512 w00 = _mm512_mul_ps(bx, by), w10 = _mm512_mul_ps(tx.a, by);
     const __m512 w01 = _mm512_mul_ps(bx, ty.a), w11 = _mm512_mul_ps(tx.a, ty.a);
     // exact_bilinear()'s integer sums for fixed8 weights on UNORM fields of at most 8 bits:
@@ -1231,6 +1235,9 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
     // Lanes with a BORDER tap take the float sums (exact_bilinear() leaves them), POINT lanes
     // included (their one tap is t00).
     const auto bordered = static_cast<__mmask16>(o00 | o10 | o01 | o11);
+    // Where every tap of every lane lies outside the level (BORDER), nothing is read.
+    const BlockQuad q = (o00 & o10 & o01 & o11) == 0xFFFF ? BlockQuad{}
+                                                          : block_fetch(levels, address, tx, ty, row, _mm512_setzero_si512());
     for (unsigned k = 0; k < 4; ++k) {
         const BlockChannel& ch = format[k];
         const bool exact = c.fixed && !Srgb && ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 0xFFu;
