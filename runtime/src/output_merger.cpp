@@ -374,8 +374,9 @@ __mmask8 row_mask(emu::LaneMask lanes, unsigned row) {
 }
 
 // Words: 1 or 2 32-bit words a texel, a compile-time constant so that the 4-byte formats' code
-// carries nothing of the 8-byte ones.
-template <unsigned Words>
+// carries nothing of the 8-byte ones. Bytes: every field 8 bits (fmt.valid: A8R8G8B8 and its
+// kin), whose decode and encode then take their constants from the code, not from `fmt`.
+template <unsigned Words, bool Bytes>
 SM2_AVX512 void merge_unorm8_avx512(const BlendState& b, const Unorm8Texel& fmt, Surface& surface, uint32_t mask,
                                     const Rgba<Lanes>& src, const std::array<int32_t, kLanes>& offset,
                                     int64_t row_run, emu::LaneMask write) {
@@ -414,6 +415,7 @@ SM2_AVX512 void merge_unorm8_avx512(const BlendState& b, const Unorm8Texel& fmt,
         }
         for (unsigned c = 0; c < 4; ++c)
             dst[c] = fmt.shift[c] < 0 ? _mm512_set1_ps(fmt.missing[c])
+                     : Bytes          ? unorm8::decode_at(stored0, static_cast<unsigned>(fmt.shift[c]))
                                       : unorm8::decode_field(two && fmt.shift[c] >= 32 ? stored1 : stored0,
                                                              static_cast<unsigned>(fmt.shift[c] % 32), fmt.mask[c]);
     }
@@ -443,7 +445,7 @@ SM2_AVX512 void merge_unorm8_avx512(const BlendState& b, const Unorm8Texel& fmt,
         if (fmt.shift[c] < 0) continue;
         // A masked channel stores what it read (which encodes back to the same byte).
         const __m512 value = mask >> c & 1u ? out[c] : dst[c];
-        const __m512i field = _mm512_slli_epi32(unorm8::encode(value, static_cast<double>(fmt.mask[c])),
+        const __m512i field = _mm512_slli_epi32(unorm8::encode(value, Bytes ? 255.0 : static_cast<double>(fmt.mask[c])),
                                                 static_cast<unsigned>(fmt.shift[c] % 32));
         if (two && fmt.shift[c] >= 32) packed1 = _mm512_or_si512(packed1, field);
         else packed0 = _mm512_or_si512(packed0, field);
@@ -676,8 +678,9 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
                     for (unsigned q = 1; q < 4; ++q)
                         run = run && lanes.x[4 * q] == lanes.x[0] + static_cast<int32_t>(2 * q) && lanes.y[4 * q] == lanes.y[0];
                     const int64_t row_run = run ? static_cast<int64_t>(offset[0]) : -1;
-                    if (fmt.words == 2) merge_unorm8_avx512<2>(s.blend, fmt, *surface, mask, src, offset, row_run, write);
-                    else merge_unorm8_avx512<1>(s.blend, fmt, *surface, mask, src, offset, row_run, write);
+                    if (fmt.words == 2) merge_unorm8_avx512<2, false>(s.blend, fmt, *surface, mask, src, offset, row_run, write);
+                    else if (fmt.valid) merge_unorm8_avx512<1, true>(s.blend, fmt, *surface, mask, src, offset, row_run, write);
+                    else merge_unorm8_avx512<1, false>(s.blend, fmt, *surface, mask, src, offset, row_run, write);
                     continue;
                 }
                 std::array<size_t, kLanes> offset;  // used for the lanes in `write` only
