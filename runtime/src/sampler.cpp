@@ -216,6 +216,10 @@ struct TextureSampler::BlockLevels {
     // filtering): the filter's instance for them decodes each tap inline, without
     // block_channel()'s call and switch.
     bool wide_unorm = false;
+    // Every channel an 8-bit UNORM field of the first word or a constant (A8R8G8B8, X8R8G8B8,
+    // A8B8G8R8, L8, A8L8, A8): the filter's instance for them has the fields' masks and
+    // maximum in its code.
+    bool bytes = false;
 };
 
 namespace {
@@ -762,6 +766,10 @@ bool block_supported(const Context& c, BlockLevels& levels) {
     levels.wide_unorm = std::all_of(format->begin(), format->end(), [&](const BlockChannel& ch) {
         return ch.kind == BlockChannel::Kind::Unorm && ch.mask > 31u && !(c.fixed && ch.mask <= 0xFFu);
     });
+    levels.bytes = std::all_of(format->begin(), format->end(), [](const BlockChannel& ch) {
+        return (ch.kind == BlockChannel::Kind::Unorm && ch.mask == 0xFFu && ch.high == 0) ||
+               ch.kind == BlockChannel::Kind::One || ch.kind == BlockChannel::Kind::Zero;
+    });
     levels.texel_bytes = c.bpp;
     if (c.texture->levels() > BlockLevels::kMax || (c.bpp != 8 && c.bpp != 4 && c.bpp != 2 && c.bpp != 1)) return false;
     if (!cpu_has_avx512()) return false;
@@ -883,6 +891,11 @@ SM2_AVX512 inline __m512 block_field(__m512i texels, const BlockChannel& ch) {
     return _mm512_cvtepi32_ps(_mm512_and_si512(_mm512_srli_epi32(texels, ch.shift), mask));
 }
 
+// block_field() of an 8-bit field at `shift`.
+SM2_AVX512 inline __m512 block_byte(__m512i texels, unsigned shift) {
+    return _mm512_cvtepi32_ps(_mm512_and_si512(_mm512_srli_epi32(texels, shift), _mm512_set1_epi32(0xFF)));
+}
+
 // half_to_float() (half.h) of 16 binary16 values in the low halves of 32-bit lanes, bit for bit:
 // normal values rebiased, infinities and NaNs with their payload as it is (not quieted, as a
 // hardware conversion would), denormals as their exact value mantissa * 2^-24.
@@ -940,10 +953,14 @@ SM2_AVX512 inline __m512 block_srgb(const Context& c, __m512 value) {
 // the lanes of `outside`.
 // Srgb: c.srgb as a compile-time constant (a run-time test here cost bench_1024 5%).
 // WideUnorm: the channel is a UNORM field wider than 5 bits (BlockLevels::wide_unorm), decoded here.
-template <bool Srgb, bool WideUnorm>
+// Bytes: every channel an 8-bit UNORM field or a constant (BlockLevels::bytes), whose decode
+// takes its constants from the code.
+template <bool Srgb, bool WideUnorm, bool Bytes>
 SM2_AVX512 inline __m512 block_tap(const Context& c, __m512i texels, const BlockChannel& ch, unsigned k,
                                    __mmask16 outside) {
-    __m512 value = WideUnorm ? unorm8::quotient(block_field(texels, ch), ch.max) : block_channel(texels, ch);
+    __m512 value = WideUnorm ? unorm8::quotient(block_field(texels, ch), ch.max)
+                   : Bytes && ch.kind == BlockChannel::Kind::Unorm ? unorm8::decode_at(texels, ch.shift)
+                                                                   : block_channel(texels, ch);
     if constexpr (Srgb)
         if (k < 3) value = block_srgb(c, value);
     return outside ? _mm512_mask_mov_ps(value, outside, _mm512_set1_ps(c.border[k])) : value;
@@ -1132,7 +1149,7 @@ SM2_AVX512 inline __m512i tap_word(const BlockQuad& q, unsigned tap, unsigned hi
 }
 
 // filter_level() on each lane's level `level` (POINT or LINEAR per lane), 2D or volume.
-template <bool Srgb, bool WideUnorm>
+template <bool Srgb, bool WideUnorm, bool Bytes>
 SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, const BlockFormat& format, __m512i level,
                                    const BlockLanes& in, __mmask16 linear, __m512 (&out)[4]) {
     const __m512i w = _mm512_permutexvar_epi32(level, _mm512_load_si512(levels.width.data()));
@@ -1186,7 +1203,7 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
                 word0 = block_narrow_words(levels, address, in_level, 0xFFFF);
         }
         for (unsigned k = 0; k < 4; ++k)
-            out[k] = block_tap<Srgb, WideUnorm>(c, format[k].high != 0 ? word1 : word0, format[k], k, outside);
+            out[k] = block_tap<Srgb, WideUnorm, Bytes>(c, format[k].high != 0 ? word1 : word0, format[k], k, outside);
         return;
     }
     const __m512 one = _mm512_set1_ps(1.0f);
@@ -1212,11 +1229,11 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
             const __m512 w00 = _mm512_mul_ps(_mm512_mul_ps(bx, by), wz), w10 = _mm512_mul_ps(_mm512_mul_ps(tx.a, by), wz);
             const __m512 w01 = _mm512_mul_ps(_mm512_mul_ps(bx, ty.a), wz), w11 = _mm512_mul_ps(_mm512_mul_ps(tx.a, ty.a), wz);
             for (unsigned k = 0; k < 4; ++k) {
-                const __m512 c00 = block_tap<Srgb, WideUnorm>(c, tap_word(q, 0, format[k].high), format[k], k, o00);
+                const __m512 c00 = block_tap<Srgb, WideUnorm, Bytes>(c, tap_word(q, 0, format[k].high), format[k], k, o00);
                 if (p == 0) point[k] = c00;
-                __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_tap<Srgb, WideUnorm>(c, tap_word(q, 1, format[k].high), format[k], k, o10), w10));
-                r = _mm512_add_ps(r, _mm512_mul_ps(block_tap<Srgb, WideUnorm>(c, tap_word(q, 2, format[k].high), format[k], k, o01), w01));
-                sum[p][k] = _mm512_add_ps(r, _mm512_mul_ps(block_tap<Srgb, WideUnorm>(c, tap_word(q, 3, format[k].high), format[k], k, o11), w11));
+                __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_tap<Srgb, WideUnorm, Bytes>(c, tap_word(q, 1, format[k].high), format[k], k, o10), w10));
+                r = _mm512_add_ps(r, _mm512_mul_ps(block_tap<Srgb, WideUnorm, Bytes>(c, tap_word(q, 2, format[k].high), format[k], k, o01), w01));
+                sum[p][k] = _mm512_add_ps(r, _mm512_mul_ps(block_tap<Srgb, WideUnorm, Bytes>(c, tap_word(q, 3, format[k].high), format[k], k, o11), w11));
             }
         }
         for (unsigned k = 0; k < 4; ++k) out[k] = _mm512_mask_mov_ps(point[k], linear, _mm512_add_ps(sum[0][k], sum[1][k]));
@@ -1243,19 +1260,24 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
         const bool exact = c.fixed && !Srgb && ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 0xFFu;
         __m512 exact_sum = _mm512_setzero_ps();
         if (exact) {
-            const __m512 top = _mm512_fmadd_ps(block_field(tap_word(q, 1, ch.high), ch), ax, _mm512_mul_ps(block_field(tap_word(q, 0, ch.high), ch), bxi));
-            const __m512 bottom = _mm512_fmadd_ps(block_field(tap_word(q, 3, ch.high), ch), ax, _mm512_mul_ps(block_field(tap_word(q, 2, ch.high), ch), bxi));
+            // (Bytes: the field's mask and maximum as constants.)
+            const __m512 v00 = Bytes ? block_byte(tap_word(q, 0, 0), ch.shift) : block_field(tap_word(q, 0, ch.high), ch);
+            const __m512 v10 = Bytes ? block_byte(tap_word(q, 1, 0), ch.shift) : block_field(tap_word(q, 1, ch.high), ch);
+            const __m512 v01 = Bytes ? block_byte(tap_word(q, 2, 0), ch.shift) : block_field(tap_word(q, 2, ch.high), ch);
+            const __m512 v11 = Bytes ? block_byte(tap_word(q, 3, 0), ch.shift) : block_field(tap_word(q, 3, ch.high), ch);
+            const __m512 top = _mm512_fmadd_ps(v10, ax, _mm512_mul_ps(v00, bxi));
+            const __m512 bottom = _mm512_fmadd_ps(v11, ax, _mm512_mul_ps(v01, bxi));
             const __m512 sum = _mm512_fmadd_ps(bottom, ay, _mm512_mul_ps(top, byi));
-            exact_sum = unorm8::quotient(sum, ch.max, 1.0f / 65536.0f);
+            exact_sum = unorm8::quotient(sum, Bytes ? 255.0f : ch.max, 1.0f / 65536.0f);
             if (!bordered) {
                 out[k] = exact_sum;
                 continue;
             }
         }
-        const __m512 c00 = block_tap<Srgb, WideUnorm>(c, tap_word(q, 0, ch.high), ch, k, o00);
-        __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_tap<Srgb, WideUnorm>(c, tap_word(q, 1, ch.high), ch, k, o10), w10));
-        r = _mm512_add_ps(r, _mm512_mul_ps(block_tap<Srgb, WideUnorm>(c, tap_word(q, 2, ch.high), ch, k, o01), w01));
-        r = _mm512_add_ps(r, _mm512_mul_ps(block_tap<Srgb, WideUnorm>(c, tap_word(q, 3, ch.high), ch, k, o11), w11));
+        const __m512 c00 = block_tap<Srgb, WideUnorm, Bytes>(c, tap_word(q, 0, ch.high), ch, k, o00);
+        __m512 r = _mm512_add_ps(_mm512_mul_ps(c00, w00), _mm512_mul_ps(block_tap<Srgb, WideUnorm, Bytes>(c, tap_word(q, 1, ch.high), ch, k, o10), w10));
+        r = _mm512_add_ps(r, _mm512_mul_ps(block_tap<Srgb, WideUnorm, Bytes>(c, tap_word(q, 2, ch.high), ch, k, o01), w01));
+        r = _mm512_add_ps(r, _mm512_mul_ps(block_tap<Srgb, WideUnorm, Bytes>(c, tap_word(q, 3, ch.high), ch, k, o11), w11));
         // POINT lanes read their texel as it is (filter_level() fetches it): the weighted sum
         // equals it for finite non-negative values, not for a float texel beside an infinity.
         r = _mm512_mask_mov_ps(c00, linear, r);
@@ -1270,9 +1292,10 @@ SM2_AVX512 __attribute__((always_inline)) inline void block_lookup(const Context
     const BlockFormat& format = levels.format;
     const __mmask16 linear = _mm512_cmpneq_epi32_mask(_mm512_load_si512(in.linear.data()), _mm512_setzero_si512());
     __m512 r[4];
-    const auto filter = c.srgb ? block_filter_level<true, false>
-                        : levels.wide_unorm ? block_filter_level<false, true>
-                                            : block_filter_level<false, false>;
+    const auto filter = c.srgb               ? block_filter_level<true, false, false>
+                        : levels.wide_unorm ? block_filter_level<false, true, false>
+                        : levels.bytes      ? block_filter_level<false, false, true>
+                                            : block_filter_level<false, false, false>;
     filter(c, levels, format, _mm512_load_si512(in.l0.data()), in, linear, r);
     const __m512 frac = _mm512_load_ps(in.frac.data());
     const __mmask16 second = _mm512_cmp_ps_mask(frac, _mm512_setzero_ps(), _CMP_GT_OQ);
