@@ -1097,14 +1097,14 @@ struct BlockQuad {
 };
 SM2_AVX512 __attribute__((always_inline)) inline BlockQuad block_fetch(const BlockLevels& levels, const BlockAddress& a,
                                                                        const BlockTaps& tx, const BlockTaps& ty,
-                                                                       __m512i row, __m512i slice) {
+                                                                       __m512i row, __m512i slice, __mmask16 needed) {
     BlockQuad q{};
     const __m512i row0 = _mm512_add_epi32(_mm512_mullo_epi32(ty.i0, row), slice);
     const __m512i row1 = _mm512_add_epi32(_mm512_mullo_epi32(ty.i1, row), slice);
     // Where i1 = i0 + 1 (every lane but those on a level's right edge) one load reads both
     // texels of a row: half the gathered elements. Edge lanes read each texel alone.
-    const __mmask16 adjacent = _mm512_cmpeq_epi32_mask(tx.i1, _mm512_add_epi32(tx.i0, _mm512_set1_epi32(1)));
-    const auto edge = static_cast<__mmask16>(~adjacent);
+    const __mmask16 adjacent = _mm512_mask_cmpeq_epi32_mask(needed, tx.i1, _mm512_add_epi32(tx.i0, _mm512_set1_epi32(1)));
+    const auto edge = static_cast<__mmask16>(needed & ~adjacent);
     if (levels.texel_bytes == 4) {
         const __m512i x0 = _mm512_slli_epi32(tx.i0, 2), x1 = _mm512_slli_epi32(tx.i1, 2);
         block_pairs(levels, a, _mm512_add_epi32(row0, x0), adjacent, q.t[0][0], q.t[1][0]);
@@ -1120,10 +1120,10 @@ SM2_AVX512 __attribute__((always_inline)) inline BlockQuad block_fetch(const Blo
     if (levels.texel_bytes == 8) {
         // Each texel's two words by one 64-bit load.
         const __m512i x0 = _mm512_slli_epi32(tx.i0, 3), x1 = _mm512_slli_epi32(tx.i1, 3);
-        block_pairs(levels, a, _mm512_add_epi32(row0, x0), 0xFFFF, q.t[0][0], q.t[0][1]);
-        block_pairs(levels, a, _mm512_add_epi32(row0, x1), 0xFFFF, q.t[1][0], q.t[1][1]);
-        block_pairs(levels, a, _mm512_add_epi32(row1, x0), 0xFFFF, q.t[2][0], q.t[2][1]);
-        block_pairs(levels, a, _mm512_add_epi32(row1, x1), 0xFFFF, q.t[3][0], q.t[3][1]);
+        block_pairs(levels, a, _mm512_add_epi32(row0, x0), needed, q.t[0][0], q.t[0][1]);
+        block_pairs(levels, a, _mm512_add_epi32(row0, x1), needed, q.t[1][0], q.t[1][1]);
+        block_pairs(levels, a, _mm512_add_epi32(row1, x0), needed, q.t[2][0], q.t[2][1]);
+        block_pairs(levels, a, _mm512_add_epi32(row1, x1), needed, q.t[3][0], q.t[3][1]);
         return q;
     }
     // Narrow texels (1 or 2 bytes): one 32-bit word holds a texel and, for adjacent lanes, the
@@ -1131,8 +1131,8 @@ SM2_AVX512 __attribute__((always_inline)) inline BlockQuad block_fetch(const Blo
     const auto shift = static_cast<unsigned>(levels.texel_bytes == 2 ? 1 : 0);
     const __m512i x0 = _mm512_slli_epi32(tx.i0, shift), x1 = _mm512_slli_epi32(tx.i1, shift);
     const __m512i next = _mm512_set1_epi32(static_cast<int32_t>(8 * levels.texel_bytes));
-    q.t[0][0] = block_narrow_words(levels, a, _mm512_add_epi32(row0, x0), 0xFFFF);
-    q.t[2][0] = block_narrow_words(levels, a, _mm512_add_epi32(row1, x0), 0xFFFF);
+    q.t[0][0] = block_narrow_words(levels, a, _mm512_add_epi32(row0, x0), needed);
+    q.t[2][0] = block_narrow_words(levels, a, _mm512_add_epi32(row1, x0), needed);
     q.t[1][0] = _mm512_srlv_epi32(q.t[0][0], next);
     q.t[3][0] = _mm512_srlv_epi32(q.t[2][0], next);
     if (edge) {
@@ -1223,9 +1223,9 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
             const auto o00 = static_cast<__mmask16>(tx.outside0 | ty.outside0 | oz), o10 = static_cast<__mmask16>(tx.outside1 | ty.outside0 | oz);
             const auto o01 = static_cast<__mmask16>(tx.outside0 | ty.outside1 | oz), o11 = static_cast<__mmask16>(tx.outside1 | ty.outside1 | oz);
             // A slice whose taps all lie outside the level on every lane (BORDER) reads none.
-            const BlockQuad q = (o00 & o10 & o01 & o11) == 0xFFFF
-                                    ? BlockQuad{}
-                                    : block_fetch(levels, address, tx, ty, row, _mm512_mullo_epi32(z, slice));
+            const auto needed = static_cast<__mmask16>(~(o00 & o10 & o01 & o11));
+            const BlockQuad q = needed == 0 ? BlockQuad{}
+                                            : block_fetch(levels, address, tx, ty, row, _mm512_mullo_epi32(z, slice), needed);
             const __m512 w00 = _mm512_mul_ps(_mm512_mul_ps(bx, by), wz), w10 = _mm512_mul_ps(_mm512_mul_ps(tx.a, by), wz);
             const __m512 w01 = _mm512_mul_ps(_mm512_mul_ps(bx, ty.a), wz), w11 = _mm512_mul_ps(_mm512_mul_ps(tx.a, ty.a), wz);
             for (unsigned k = 0; k < 4; ++k) {
@@ -1253,8 +1253,8 @@ SM2_AVX512 void block_filter_level(const Context& c, const BlockLevels& levels, 
     // included (their one tap is t00).
     const auto bordered = static_cast<__mmask16>(o00 | o10 | o01 | o11);
     // Where every tap of every lane lies outside the level (BORDER), nothing is read.
-    const BlockQuad q = (o00 & o10 & o01 & o11) == 0xFFFF ? BlockQuad{}
-                                                          : block_fetch(levels, address, tx, ty, row, _mm512_setzero_si512());
+    const auto needed = static_cast<__mmask16>(~(o00 & o10 & o01 & o11));
+    const BlockQuad q = needed == 0 ? BlockQuad{} : block_fetch(levels, address, tx, ty, row, _mm512_setzero_si512(), needed);
     for (unsigned k = 0; k < 4; ++k) {
         const BlockChannel& ch = format[k];
         const bool exact = c.fixed && !Srgb && ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 0xFFu;
