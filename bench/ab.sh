@@ -3,15 +3,17 @@
 # prints each build's median pixel-stage time and median run time (`sm2 bench`), and B / A.
 #
 #   bench/ab.sh --snapshot BUILD DIR     copy BUILD's sm2 and its modules to DIR (a build to keep)
-#   bench/ab.sh [--threads N] [--rounds R] [--repeat K] DIR_A DIR_B STREAM
+#   bench/ab.sh [--threads N] [--rounds R] [--repeat K] [--cpus LIST] DIR_A DIR_B STREAM
 #   e.g. bench/ab.sh --snapshot build/release /tmp/before; (change, rebuild)
 #        bench/ab.sh --rounds 7 /tmp/before build/release samples/scenes/27_final_combine.sm2cs
 #
 # A DIR is a build tree or a snapshot: DIR/tools/sm2 with DIR/lib/sm2emu/ beside it. The JIT and
 # the image I/O are modules that sm2 finds relative to its own file (docs/embedding.md), so a
 # lone copy of tools/sm2 loads the build tree's JIT: compare whole snapshots, never binaries.
+# --cpus LIST runs both sides under `taskset -c LIST`: on this machine one core has been 15%
+# slower than the other for hours at a time, and a one-thread run lands on either.
 set -euo pipefail
-usage() { sed -n '2,13p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 2; }
+usage() { sed -n '2,15p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 2; }
 
 if [ "${1:-}" = "--snapshot" ]; then
     [ $# -eq 3 ] || usage
@@ -24,12 +26,13 @@ if [ "${1:-}" = "--snapshot" ]; then
     exit 0
 fi
 
-threads=1 rounds=5 repeat=3
+threads=1 rounds=5 repeat=3 cpus=""
 while [ $# -gt 0 ]; do
     case "$1" in
         --threads) threads=$2; shift 2 ;;
         --rounds) rounds=$2; shift 2 ;;
         --repeat) repeat=$2; shift 2 ;;
+        --cpus) cpus=$2; shift 2 ;;
         -h|--help) usage ;;
         --*) echo "ab.sh: unknown option '$1'" >&2; usage ;;
         *) break ;;
@@ -50,7 +53,9 @@ for round in $(seq "$rounds"); do
     for side in A B; do
         dir=$a
         [ "$side" = B ] && dir=$b
-        out=$(env -u SM2EMU_JIT -u SM2EMU_IMAGE_IO "$dir/tools/sm2" bench "$stream" --threads "$threads" --repeat "$repeat")
+        pin=()
+        [ -n "$cpus" ] && pin=(taskset -c "$cpus")
+        out=$(env -u SM2EMU_JIT -u SM2EMU_IMAGE_IO "${pin[@]}" "$dir/tools/sm2" bench "$stream" --threads "$threads" --repeat "$repeat")
         echo "$out" | sed -n 's/.*pixel \([0-9.]*\) ms.*/\1/p' >> "$work/$side.pixel"
         echo "$out" | sed -n 's/^time per run: median \([0-9.]*\) ms.*/\1/p' >> "$work/$side.run"
     done
