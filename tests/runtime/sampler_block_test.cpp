@@ -1,6 +1,6 @@
-// The sampler's 16-lane AVX-512 path against its per-lane path: the same texels, bit for bit,
-// over random textures, sampler states, coordinates (special values included) and texld
-// variants. The per-lane path is the reference whose values sampler_test.cpp derives by hand.
+// The sampler's 16-lane path (its AVX-512 instance and its AVX2 one, whichever the CPU runs)
+// against its per-lane path: the same texels, bit for bit, over random textures, sampler states,
+// coordinates (special values included) and texld variants. The per-lane path is the reference whose values sampler_test.cpp derives by hand.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,10 +14,19 @@
 
 #include "sm2/runtime/sampler.h"
 #include "sm2/runtime/texture.h"
-#include "unorm8_avx512.h"  // cpu_has_avx512
+#include "unorm8_avx512.h"  // cpu_has_avx512, cpu_has_avx2
 
 namespace sm2::runtime {
 namespace {
+
+// Whether this CPU runs a block path at all (sampler.cpp's instances: AVX-512 or AVX2).
+bool cpu_runs_block_path() { return cpu_has_avx512() || cpu_has_avx2(); }
+
+// The instances to check: the CPU's own, and on an AVX-512 CPU the AVX2 one forced as well.
+std::vector<bool> forced_avx2_choices() {
+    if (cpu_has_avx512()) return {false, true};
+    return {false};
+}
 
 // d = 0: a 2D texture; d > 0: a volume of depth d; cube: a cube map of side w.
 Texture random_texture(std::mt19937& rng, Format format, uint32_t w, uint32_t h, uint32_t levels, uint32_t d = 0,
@@ -131,6 +140,7 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
         TextureSampler block, lanes;
         block.set_texture(0, &texture);
         block.set_block_64bit_addresses(round % 2 == 1);
+        block.set_block_avx2(round % 3 == 2);  // on an AVX-512 CPU, a third of the rounds run the AVX2 instance
         lanes.set_texture(0, &texture);
         lanes.set_block_path(false);
         for (unsigned states = 0; states < 8; ++states) {
@@ -176,9 +186,9 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
             }
         }
     }
-    // Without AVX-512 the comparison is trivially equal; with it, a good share must have taken
-    // the block path for the test to mean anything.
-    if (cpu_has_avx512()) {
+    // Without a block path the comparison is trivially equal; with one, a good share must have
+    // taken it for the test to mean anything.
+    if (cpu_runs_block_path()) {
         EXPECT_GT(block_requests, total / 5);
         EXPECT_GT(volume_block_requests, total / 20);
         EXPECT_GT(narrow_block_requests, total / 10);
@@ -293,10 +303,12 @@ TEST(SamplerBlockPath, PointLookupsOfScreenAlignedBatchesReadTheirTexelRows) {
     std::mt19937 rng(20261129);
     for (const Format format : {Format::A8R8G8B8, Format::R32F, Format::A2B10G10R10}) {
         const Texture texture = random_texture(rng, format, 64, 32, 1);  // powers of two: WRAP too
-        for (const bool addresses64 : {false, true}) {
+        for (const bool addresses64 : {false, true})
+        for (const bool avx2 : forced_avx2_choices()) {
             TextureSampler block, lanes;
             block.set_texture(0, &texture);
             block.set_block_64bit_addresses(addresses64);
+            block.set_block_avx2(avx2);
             lanes.set_texture(0, &texture);
             lanes.set_block_path(false);
             SamplerState state;
@@ -306,7 +318,7 @@ TEST(SamplerBlockPath, PointLookupsOfScreenAlignedBatchesReadTheirTexelRows) {
                 state.address_u = state.address_v = mode;
                 for (TextureSampler* s : {&block, &lanes}) s->set_state(0, state);
                 block.prepare();
-                if (cpu_has_avx512()) {
+                if (cpu_runs_block_path()) {
                     ASSERT_TRUE(block.block_path_applies(0));
                 }
                 // Batches at every column and every other row, to the edges and past them.
@@ -328,7 +340,8 @@ TEST(SamplerBlockPath, PointLookupsOfScreenAlignedBatchesReadTheirTexelRows) {
                                 if (std::isnan(a[c][l]) && std::isnan(b[c][l])) continue;
                                 ASSERT_EQ(std::bit_cast<uint32_t>(a[c][l]), std::bit_cast<uint32_t>(b[c][l]))
                                     << format_info(format)->name << " at " << x0 << ", " << y0 << " channel " << c
-                                    << " lane " << l << (addresses64 ? " (64-bit addresses)" : "");
+                                    << " lane " << l << (addresses64 ? " (64-bit addresses)" : "")
+                                    << (avx2 ? " (AVX2 instance)" : "");
                             }
                     }
             }
@@ -337,7 +350,7 @@ TEST(SamplerBlockPath, PointLookupsOfScreenAlignedBatchesReadTheirTexelRows) {
 }
 
 // A texture of `count` texels, `width` a row, texel v holding texel(v) in its bytes, POINT-
-// sampled at every texel centre (the block path where the CPU has AVX-512): channel `channel`
+// sampled at every texel centre (the block path's instances where the CPU runs one): channel `channel`
 // of texel v must read with the bits expected(v).
 template <typename TexelOf, typename ExpectedOf>
 void expect_every_texel(Format format, uint32_t count, uint32_t width, unsigned channel, TexelOf texel_of,
@@ -351,15 +364,17 @@ void expect_every_texel(Format format, uint32_t count, uint32_t width, unsigned 
         const uint32_t texel = texel_of(v);
         std::memcpy(bytes.data() + (v / width) * pitch + (v % width) * texel_bytes, &texel, texel_bytes);
     }
+    for (const bool avx2 : forced_avx2_choices()) {
     TextureSampler s;
     s.set_texture(0, &t);
+    s.set_block_avx2(avx2);
     SamplerState st;
     st.address_u = st.address_v = TextureAddress::Clamp;
     st.mag_filter = st.min_filter = TextureFilter::Point;
     st.mip_filter = TextureFilter::None;
     s.set_state(0, st);
     s.prepare();
-    if (cpu_has_avx512()) {
+    if (cpu_runs_block_path()) {
         ASSERT_TRUE(s.block_path_applies(0)) << format_info(format)->name;
     }
     for (uint32_t first = 0; first < count; first += emu::kBatchLanes) {
@@ -376,8 +391,10 @@ void expect_every_texel(Format format, uint32_t count, uint32_t width, unsigned 
         for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
             const uint32_t v = std::min(first + l, count - 1);
             ASSERT_EQ(std::bit_cast<uint32_t>(texels[channel][l]), expected_of(v))
-                << format_info(format)->name << " texel value 0x" << std::hex << texel_of(v);
+                << format_info(format)->name << " texel value 0x" << std::hex << texel_of(v)
+                << (avx2 ? " (AVX2 instance)" : "");
         }
+    }
     }
 }
 
@@ -478,3 +495,34 @@ TEST(SamplerBlockPath, EveryFixed8BilinearSumDividesAsTheDivision) {
 
 }  // namespace
 }  // namespace sm2::runtime
+
+// The same for the AVX2 instance of unorm8::quotient (after every use of the real intrinsics:
+// avx512_on_avx2.h takes their names).
+#include "avx512_on_avx2.h"
+
+namespace sm2::runtime::avx2 {
+namespace {
+
+SM2_AVX2 void expect_every_bilinear_sum_divides_exactly(uint32_t bits) {
+    const uint32_t max = (1u << bits) - 1u;
+    const uint32_t largest = max * 65536u;
+    const Ints512 step = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    alignas(64) std::array<float, emu::kBatchLanes> got;
+    for (uint32_t first = 0; first <= largest; first += emu::kBatchLanes) {
+        const Floats512 sum = _mm512_cvtepi32_ps(_mm512_add_epi32(_mm512_set1_epi32(static_cast<int32_t>(first)), step));
+        _mm512_store_ps(got.data(), unorm8::quotient(sum, static_cast<float>(max), 1.0f / 65536.0f));
+        for (unsigned l = 0; l < emu::kBatchLanes && first + l <= largest; ++l) {
+            volatile float numerator = static_cast<float>(first + l);
+            const float expected = numerator / static_cast<float>(largest);
+            ASSERT_EQ(std::bit_cast<uint32_t>(got[l]), std::bit_cast<uint32_t>(expected)) << bits << "-bit sum " << first + l;
+        }
+    }
+}
+
+TEST(SamplerBlockPath, EveryFixed8BilinearSumDividesAsTheDivisionInTheAvx2Instance) {
+    if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 and FMA on this CPU";
+    for (const uint32_t bits : {8u, 6u, 5u, 4u, 1u}) expect_every_bilinear_sum_divides_exactly(bits);
+}
+
+}  // namespace
+}  // namespace sm2::runtime::avx2

@@ -78,9 +78,9 @@ public:
         precision_ = precision;
         forget_prepared();
     }
-    // The 16-lane AVX-512 path for 2D and volume lookups of the formats and states it covers
-    // (sampler.cpp, block_supported; on by default where the CPU has AVX-512); off, every lookup
-    // takes the per-lane path. Both give the same bits.
+    // The 16-lane path for 2D and volume lookups of the formats and states it covers
+    // (sampler.cpp, block_supported; on by default where the CPU has AVX-512 or AVX2 with FMA);
+    // off, every lookup takes the per-lane path. Both give the same bits.
     void set_block_path(bool enabled) {
         block_enabled_ = enabled;
         forget_prepared();
@@ -90,6 +90,12 @@ public:
     // which one a texture gets depends on where the allocator put its levels).
     void set_block_64bit_addresses(bool forced) {
         block_64bit_addresses_ = forced;
+        forget_prepared();
+    }
+    // The block path's AVX2 instance even where the CPU has AVX-512 (tests: both instances give
+    // the per-lane path's bits).
+    void set_block_avx2(bool forced) {
+        block_avx2_ = forced;
         forget_prepared();
     }
     // Whether sample() takes the 16-lane path for this stage's texture and state.
@@ -142,6 +148,7 @@ private:
     FilterPrecision precision_ = FilterPrecision::Fixed8;
     bool block_enabled_ = true;
     bool block_64bit_addresses_ = false;
+    bool block_avx2_ = false;
     // prepare()'s result per stage: whether it ran, and the tables (null: no block path).
     std::array<bool, kStages> prepared_{};
     std::array<std::shared_ptr<const BlockLevels>, kStages> block_levels_{};
