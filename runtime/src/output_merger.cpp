@@ -260,7 +260,7 @@ bool distinct_pixels(const std::array<uint32_t, kLanes>& key, bool quad_order) {
 
 // Blending, write mask and store for the lanes in `write` of one fast-path target (every lane
 // inside the surface). src: the shader colour of each lane.
-__attribute__((target_clones("arch=x86-64-v4", "default")))
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 void merge_unorm8(const BlendState& b, const Unorm8Texel& fmt, Surface& surface, uint32_t mask,
                   const Rgba<Lanes>& src, const std::array<size_t, kLanes>& offset, emu::LaneMask write) {
     std::byte* const bytes = surface.bytes().data();
@@ -297,49 +297,23 @@ void merge_unorm8(const BlendState& b, const Unorm8Texel& fmt, Surface& surface,
 
 // Blending of a whole batch, then the fixed-point clamp: the templates above inlined into one
 // function the compiler vectorizes (AVX-512 where the CPU has it).
-__attribute__((target_clones("arch=x86-64-v4", "default")))
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 void blend_batch(const BlendState& b, const Rgba<Lanes>& src, const Rgba<Lanes>& dst, Rgba<Lanes>& out) {
     out = blend_unclamped(b, src, dst);
     for (Lanes& c : out) saturate(c);
 }
 
-SM2_AVX512_CODE_BEGIN
-
 // The lanes of `live` inside a width x height target, and whether their pixels are pairwise
-// different (distinct_pixels()), in AVX-512 registers: the keys, the quad-order test and, for
-// batches in quad order, the two comparisons with the keys rotated by one and by two quads.
+// different (distinct_pixels()), as lane_places_block() (output_merger_block.inc) finds them in
+// vector registers: the keys, the quad-order test and, for batches in quad order, the two
+// comparisons with the keys rotated by one and by two quads.
 struct LanePlaces {
     emu::LaneMask write = 0;
     bool distinct = false;
 };
-SM2_AVX512 LanePlaces lane_places_avx512(const PixelLanes& lanes, emu::LaneMask live, uint32_t width, uint32_t height) {
-    const __m512i x = _mm512_load_si512(lanes.x.data()), y = _mm512_load_si512(lanes.y.data());
-    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    // Negative coordinates compare as values above any size.
-    const __mmask16 inside = static_cast<__mmask16>(live) &
-                             _mm512_cmplt_epu32_mask(x, _mm512_set1_epi32(static_cast<int32_t>(width))) &
-                             _mm512_cmplt_epu32_mask(y, _mm512_set1_epi32(static_cast<int32_t>(height)));
-    const __m512i outside_key = _mm512_or_si512(lane, _mm512_set1_epi32(INT32_MIN));  // unlike every pixel
-    const __m512i key = _mm512_mask_add_epi32(outside_key, inside,
-                                              _mm512_mullo_epi32(y, _mm512_set1_epi32(static_cast<int32_t>(width))), x);
-    const __m512i one = _mm512_set1_epi32(1);
-    const __m512i place = _mm512_or_si512(_mm512_and_si512(x, one), _mm512_slli_epi32(_mm512_and_si512(y, one), 1));
-    const __mmask16 misplaced = _mm512_mask_cmpneq_epi32_mask(inside, place, _mm512_and_si512(lane, _mm512_set1_epi32(3)));
-    LanePlaces r;
-    r.write = inside;
-    if (misplaced == 0) {
-        const __m512i by_one_quad = _mm512_alignr_epi32(key, key, 4), by_two_quads = _mm512_alignr_epi32(key, key, 8);
-        r.distinct = (_mm512_cmpeq_epi32_mask(key, by_one_quad) | _mm512_cmpeq_epi32_mask(key, by_two_quads)) == 0;
-    } else {
-        std::array<uint32_t, kLanes> keys;
-        _mm512_storeu_si512(keys.data(), key);
-        r.distinct = distinct_pixels(keys, false);
-    }
-    return r;
-}
 
 // The classic "source over" blend (SRCALPHA, INVSRCALPHA, ADD for colour and alpha), which
-// merge_unorm8_avx512() does in registers.
+// merge_unorm8_block() does in registers.
 bool source_over(const BlendState& b) {
     return b.src == Blend::SrcAlpha && b.dst == Blend::InvSrcAlpha && b.op == BlendOp::Add &&
            b.src_alpha == Blend::SrcAlpha && b.dst_alpha == Blend::InvSrcAlpha && b.op_alpha == BlendOp::Add;
@@ -351,17 +325,6 @@ bool additive(const BlendState& b) {
            b.dst_alpha == Blend::One && b.op_alpha == BlendOp::Add;
 }
 
-// saturate() for 16 lanes: NaN and -0 -> +0.
-SM2_AVX512 inline __m512 saturate16(__m512 v) {
-    const __m512 c = _mm512_maskz_mov_ps(_mm512_cmp_ps_mask(v, _mm512_setzero_ps(), _CMP_GT_OQ), v);
-    return _mm512_mask_mov_ps(_mm512_set1_ps(1.0f), _mm512_cmp_ps_mask(c, _mm512_set1_ps(1.0f), _CMP_LT_OQ), c);
-}
-
-// merge_unorm8() with its loads, conversions and stores in AVX-512 registers: one gather of the
-// 16 texels, unorm8::decode, saturate, blend_batch(), unorm8::encode, one scatter. The same
-// IEEE operations as merge_unorm8(), so the same bytes (output_merger_fast_test). offset: byte
-// offset of each lane's texel, for the lanes of `write`. 8-byte texels (fmt.words 2) take a
-// gather and a scatter per 32-bit word.
 // A batch whose 4 quads lie side by side in one quad row (x0, x0 + 2, x0 + 4, x0 + 6 at y0):
 // its texels are two runs of 8 in rows y0 and y0 + 1, read and written with masked row
 // loads/stores instead of a gather and a scatter. kRowLane[r][c]: the lane of row r, column c.
@@ -373,139 +336,32 @@ __mmask8 row_mask(emu::LaneMask lanes, unsigned row) {
     return static_cast<__mmask8>(m);
 }
 
-// Words: 1 or 2 32-bit words a texel, a compile-time constant so that the 4-byte formats' code
-// carries nothing of the 8-byte ones. Bytes: every field 8 bits (fmt.valid: A8R8G8B8 and its
-// kin), whose decode and encode then take their constants from the code, not from `fmt`.
-template <unsigned Words, bool Bytes>
-SM2_AVX512 void merge_unorm8_avx512(const BlendState& b, const Unorm8Texel& fmt, Surface& surface, uint32_t mask,
-                                    const Rgba<Lanes>& src, const std::array<int32_t, kLanes>& offset,
-                                    int64_t row_run, emu::LaneMask write) {
-    std::byte* const bytes = surface.bytes().data();
-    const auto lanes = static_cast<__mmask16>(write);
-    const __m512i where = _mm512_loadu_si512(offset.data());
-    // Lane l of the batch from the two rows (row 0's texels in 0-7, row 1's in 16-23), and back.
-    const __m512i from_rows = _mm512_setr_epi32(0, 1, 16, 17, 2, 3, 18, 19, 4, 5, 20, 21, 6, 7, 22, 23);
-    const __m512i to_row0 = _mm512_setr_epi32(0, 1, 4, 5, 8, 9, 12, 13, 0, 0, 0, 0, 0, 0, 0, 0);
-    const __m512i to_row1 = _mm512_setr_epi32(2, 3, 6, 7, 10, 11, 14, 15, 0, 0, 0, 0, 0, 0, 0, 0);
-    const __mmask8 row0 = row_run >= 0 ? row_mask(write, 0) : 0, row1 = row_run >= 0 ? row_mask(write, 1) : 0;
-    std::byte* const run0 = row_run >= 0 ? bytes + row_run : bytes;
-    std::byte* const run1 = run0 + surface.row_pitch();
-    // 8-byte texels: a row is 8 qwords; lane l's low word is dword 2 * column (+ 16 for row 1)
-    // of the two rows, its high word the next.
-    constexpr bool two = Words == 2;
-    const __m512i from_rows_low = _mm512_setr_epi32(0, 2, 16, 18, 4, 6, 20, 22, 8, 10, 24, 26, 12, 14, 28, 30);
-    const __m512i from_rows_high = _mm512_add_epi32(from_rows_low, _mm512_set1_epi32(1));
-    const __m512i word1 = _mm512_add_epi32(where, _mm512_set1_epi32(4));
-    __m512 dst[4] = {}, out[4];
-    if (b.enable || mask != 0xF) {
-        // The two words as two values (an array indexed by the channel's word at run time would
-        // keep them in memory).
-        __m512i stored0 = _mm512_setzero_si512(), stored1 = _mm512_setzero_si512();
-        if (row_run >= 0 && two) {
-            const __m512i r0 = _mm512_maskz_loadu_epi64(row0, run0), r1 = _mm512_maskz_loadu_epi64(row1, run1);
-            stored0 = _mm512_maskz_permutex2var_epi32(lanes, r0, from_rows_low, r1);
-            stored1 = _mm512_maskz_permutex2var_epi32(lanes, r0, from_rows_high, r1);
-        } else if (row_run >= 0) {
-            const __m512i r0 = _mm512_castsi256_si512(_mm256_maskz_loadu_epi32(row0, run0));
-            const __m512i r1 = _mm512_castsi256_si512(_mm256_maskz_loadu_epi32(row1, run1));
-            stored0 = _mm512_maskz_permutex2var_epi32(lanes, r0, from_rows, r1);
-        } else {
-            stored0 = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, where, bytes, 1);
-            if (two) stored1 = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, word1, bytes, 1);
-        }
-        for (unsigned c = 0; c < 4; ++c)
-            dst[c] = fmt.shift[c] < 0 ? _mm512_set1_ps(fmt.missing[c])
-                     : Bytes          ? unorm8::decode_at(stored0, static_cast<unsigned>(fmt.shift[c]))
-                                      : unorm8::decode_field(two && fmt.shift[c] >= 32 ? stored1 : stored0,
-                                                             static_cast<unsigned>(fmt.shift[c] % 32), fmt.mask[c]);
-    }
-    for (unsigned c = 0; c < 4; ++c) out[c] = saturate16(_mm512_loadu_ps(src[c].v.data()));
-    if (b.enable) {
-        if (source_over(b)) {
-            // blend_batch() for SRCALPHA, INVSRCALPHA, ADD on every channel, in registers: the
-            // same operations (s * a + d * (1 - a), then saturate).
-            const __m512 alpha = out[3], keep = _mm512_sub_ps(_mm512_set1_ps(1.0f), out[3]);
-            for (unsigned c = 0; c < 4; ++c)
-                out[c] = saturate16(_mm512_add_ps(_mm512_mul_ps(out[c], alpha), _mm512_mul_ps(dst[c], keep)));
-        } else if (additive(b)) {
-            for (unsigned c = 0; c < 4; ++c) out[c] = saturate16(_mm512_add_ps(out[c], dst[c]));
-        } else {
-            Rgba<Lanes> clamped, previous, blended;
-            for (unsigned c = 0; c < 4; ++c) {
-                _mm512_storeu_ps(clamped[c].v.data(), out[c]);
-                _mm512_storeu_ps(previous[c].v.data(), dst[c]);
-            }
-            blend_batch(b, clamped, previous, blended);
-            for (unsigned c = 0; c < 4; ++c) out[c] = _mm512_loadu_ps(blended[c].v.data());
-        }
-    }
-    // out and dst are in [0, 1].
-    __m512i packed0 = _mm512_setzero_si512(), packed1 = _mm512_setzero_si512();
-    for (unsigned c = 0; c < 4; ++c) {
-        if (fmt.shift[c] < 0) continue;
-        // A masked channel stores what it read (which encodes back to the same byte).
-        const __m512 value = mask >> c & 1u ? out[c] : dst[c];
-        const __m512i field = _mm512_slli_epi32(unorm8::encode(value, Bytes ? 255.0 : static_cast<double>(fmt.mask[c])),
-                                                static_cast<unsigned>(fmt.shift[c] % 32));
-        if (two && fmt.shift[c] >= 32) packed1 = _mm512_or_si512(packed1, field);
-        else packed0 = _mm512_or_si512(packed0, field);
-    }
-    if (row_run >= 0 && two) {
-        // Row r's qword j: lane kRowLane[r][j]'s low word, then its high word.
-        const __m512i qwords_row0 = _mm512_setr_epi32(0, 16, 1, 17, 4, 20, 5, 21, 8, 24, 9, 25, 12, 28, 13, 29);
-        const __m512i qwords_row1 = _mm512_setr_epi32(2, 18, 3, 19, 6, 22, 7, 23, 10, 26, 11, 27, 14, 30, 15, 31);
-        _mm512_mask_storeu_epi64(run0, row0, _mm512_permutex2var_epi32(packed0, qwords_row0, packed1));
-        _mm512_mask_storeu_epi64(run1, row1, _mm512_permutex2var_epi32(packed0, qwords_row1, packed1));
-    } else if (two) {
-        _mm512_mask_i32scatter_epi32(bytes, lanes, where, packed0, 1);
-        _mm512_mask_i32scatter_epi32(bytes, lanes, word1, packed1, 1);
-    } else if (row_run >= 0) {
-        _mm256_mask_storeu_epi32(run0, row0, _mm512_castsi512_si256(_mm512_permutexvar_epi32(to_row0, packed0)));
-        _mm256_mask_storeu_epi32(run1, row1, _mm512_castsi512_si256(_mm512_permutexvar_epi32(to_row1, packed0)));
-    } else {
-        _mm512_mask_i32scatter_epi32(bytes, lanes, where, packed0, 1);
-    }
-}
-
-// The float copy of merge() (32-bit float targets without blending) for the lanes in `write`
-// (inside the surface): each stored channel by one scatter, whose writes to one address keep
-// the later lane's, as the per-lane loop does; a batch of 4 quads side by side on a 4-byte
-// target (R32F) by two row stores.
-SM2_AVX512 void copy_float_avx512(const FloatTexel& fmt, Surface& surface, uint32_t mask, const Rgba<Lanes>& src,
-                                  const PixelLanes& lanes, emu::LaneMask write) {
-    std::byte* const bytes = surface.bytes().data();
-    const auto pitch = static_cast<int32_t>(surface.row_pitch());
-    const __m512i x = _mm512_load_si512(lanes.x.data()), y = _mm512_load_si512(lanes.y.data());
-    const bool run = fmt.bytes == 4 && write == emu::kAllLanes && lanes.quad_count == 4 &&
-                     _mm512_cmpeq_epi32_mask(x, _mm512_add_epi32(_mm512_set1_epi32(lanes.x[0]),
-                                                                 _mm512_setr_epi32(0, 1, 0, 1, 2, 3, 2, 3, 4, 5, 4, 5, 6, 7, 6, 7))) == 0xFFFF &&
-                     _mm512_cmpeq_epi32_mask(y, _mm512_add_epi32(_mm512_set1_epi32(lanes.y[0]),
-                                                                 _mm512_setr_epi32(0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1))) == 0xFFFF;
-    if (run) {
-        // Every lane written, so all 8 texels of both rows lie in the surface.
-        std::byte* const row0 = bytes + static_cast<size_t>(lanes.y[0]) * surface.row_pitch() + static_cast<size_t>(lanes.x[0]) * 4;
-        std::byte* const row1 = row0 + surface.row_pitch();
-        const __m512i to_row0 = _mm512_setr_epi32(0, 1, 4, 5, 8, 9, 12, 13, 0, 0, 0, 0, 0, 0, 0, 0);
-        const __m512i to_row1 = _mm512_setr_epi32(2, 3, 6, 7, 10, 11, 14, 15, 0, 0, 0, 0, 0, 0, 0, 0);
-        for (unsigned c = 0; c < 4; ++c) {
-            if (fmt.offset[c] < 0 || !(mask >> c & 1u)) continue;
-            const __m512 value = _mm512_loadu_ps(src[c].v.data());
-            _mm256_storeu_ps(reinterpret_cast<float*>(row0 + fmt.offset[c]), _mm512_castps512_ps256(_mm512_permutexvar_ps(to_row0, value)));
-            _mm256_storeu_ps(reinterpret_cast<float*>(row1 + fmt.offset[c]), _mm512_castps512_ps256(_mm512_permutexvar_ps(to_row1, value)));
-        }
-        return;
-    }
-    const __m512i where = _mm512_add_epi32(_mm512_mullo_epi32(y, _mm512_set1_epi32(pitch)),
-                                           _mm512_mullo_epi32(x, _mm512_set1_epi32(static_cast<int32_t>(fmt.bytes))));
-    for (unsigned c = 0; c < 4; ++c)
-        if (fmt.offset[c] >= 0 && (mask >> c & 1u))
-            _mm512_mask_i32scatter_ps(bytes + fmt.offset[c], static_cast<__mmask16>(write), where,
-                                      _mm512_loadu_ps(src[c].v.data()), 1);
-}
-
-SM2_AVX512_CODE_END
-
 }  // namespace
+
+// The kernels, once per instruction set (sampler.cpp explains the two inclusions).
+namespace avx512 {
+namespace {
+#define SM2_BLOCK SM2_AVX512
+SM2_AVX512_CODE_BEGIN
+#include "output_merger_block.inc"
+SM2_AVX512_CODE_END
+#undef SM2_BLOCK
+}  // namespace
+}  // namespace avx512
+
+}  // namespace sm2::runtime
+
+#include "avx512_on_avx2.h"
+
+namespace sm2::runtime {
+
+namespace avx2 {
+namespace {
+#define SM2_BLOCK SM2_AVX2
+#include "output_merger_block.inc"
+#undef SM2_BLOCK
+}  // namespace
+}  // namespace avx2
 
 OutputMergerState output_merger_state(const RenderState& rs) {
     OutputMergerState s;
@@ -588,11 +444,14 @@ Vec4 blend(const BlendState& b, const Vec4& src_in, const Vec4& dst, bool fixed_
 }
 
 // Cloned for x86-64-v4: its per-lane loops (keys, offsets, the depth clamp) vectorize with AVX-512.
-__attribute__((target_clones("arch=x86-64-v4", "default")))
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const MergeInput& in) {
     const emu::Batch& batch = *in.batch;
     const PixelLanes& lanes = *in.lanes;
     emu::LaneMask live = in.live & ~batch.killed;
+    // The 16-lane kernels' instance this CPU runs (output_merger_block.inc), if any.
+    const bool avx512_block = cpu_has_avx512() && !in.block_avx2;
+    const bool block = avx512_block || cpu_has_avx2();
     if (lanes.quad_count * 4 < kLanes) live &= (emu::LaneMask{1} << (lanes.quad_count * 4)) - 1;
 
     // Depth of each lane: oDepth (no bias) or the interpolated, biased depth.
@@ -638,8 +497,9 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
         emu::LaneMask write = 0;
         bool distinct = false;
         const uint32_t width = surface->width(), height = surface->height();
-        if (cpu_has_avx512()) {
-            const LanePlaces places = lane_places_avx512(lanes, live, width, height);
+        if (block) {
+            const LanePlaces places = avx512_block ? avx512::lane_places_block(lanes, live, width, height)
+                                                   : avx2::lane_places_block(lanes, live, width, height);
             write = places.write;
             distinct = places.distinct;
         } else {
@@ -663,9 +523,9 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
 
         if (!srgb && !in.generic_path) {
             const Unorm8Texel& fmt = unorm8_texel(*info);
-            const bool block = fmt.wide && cpu_has_avx512() && surface->bytes().size() <= size_t{INT32_MAX};
-            if ((fmt.valid || block) && distinct) {
-                if (block) {
+            const bool wide_block = fmt.wide && block && surface->bytes().size() <= size_t{INT32_MAX};
+            if ((fmt.valid || wide_block) && distinct) {
+                if (wide_block) {
                     std::array<int32_t, kLanes> offset;  // used for the lanes in `write` only
                     const auto pitch = static_cast<uint32_t>(surface->row_pitch());
                     for (unsigned l = 0; l < kLanes; ++l)
@@ -678,9 +538,10 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
                     for (unsigned q = 1; q < 4; ++q)
                         run = run && lanes.x[4 * q] == lanes.x[0] + static_cast<int32_t>(2 * q) && lanes.y[4 * q] == lanes.y[0];
                     const int64_t row_run = run ? static_cast<int64_t>(offset[0]) : -1;
-                    if (fmt.words == 2) merge_unorm8_avx512<2, false>(s.blend, fmt, *surface, mask, src, offset, row_run, write);
-                    else if (fmt.valid) merge_unorm8_avx512<1, true>(s.blend, fmt, *surface, mask, src, offset, row_run, write);
-                    else merge_unorm8_avx512<1, false>(s.blend, fmt, *surface, mask, src, offset, row_run, write);
+                    const auto run_kernel = [&](auto kernel) { kernel(s.blend, fmt, *surface, mask, src, offset, row_run, write); };
+                    if (fmt.words == 2) avx512_block ? run_kernel(avx512::merge_unorm8_block<2, false>) : run_kernel(avx2::merge_unorm8_block<2, false>);
+                    else if (fmt.valid) avx512_block ? run_kernel(avx512::merge_unorm8_block<1, true>) : run_kernel(avx2::merge_unorm8_block<1, true>);
+                    else avx512_block ? run_kernel(avx512::merge_unorm8_block<1, false>) : run_kernel(avx2::merge_unorm8_block<1, false>);
                     continue;
                 }
                 std::array<size_t, kLanes> offset;  // used for the lanes in `write` only
@@ -695,8 +556,9 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
         if (!srgb && !in.generic_path && !s.blend.enable) {
             const FloatTexel& fmt = float_texel(*info);
             if (fmt.valid) {
-                if (cpu_has_avx512() && surface->bytes().size() <= size_t{INT32_MAX}) {
-                    copy_float_avx512(fmt, *surface, mask, src, lanes, write);
+                if (block && surface->bytes().size() <= size_t{INT32_MAX}) {
+                    if (avx512_block) avx512::copy_float_block(fmt, *surface, mask, src, lanes, write);
+                    else avx2::copy_float_block(fmt, *surface, mask, src, lanes, write);
                     continue;
                 }
                 std::byte* const bytes = surface->bytes().data();

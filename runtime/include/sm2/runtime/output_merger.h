@@ -78,6 +78,8 @@ struct MergeInput {
     // Tests only: store every target through the per-pixel path (Surface::read/write), which
     // the 8-bit fast path must match byte for byte.
     bool generic_path = false;
+    // Tests only: the 16-lane kernels' AVX2 instance even on a CPU with AVX-512.
+    bool block_avx2 = false;
 };
 // Runs every per-pixel operation for the live lanes; returns the lanes that wrote colour.
 // Targets whose channels are each an 8-bit UNORM byte of a 4-byte texel (A8R8G8B8, X8R8G8B8,
