@@ -7,8 +7,9 @@
 #   bench/alu_peak.sh [--sm2 PATH] [--threads N] [--repeat R] [--ghz F] [-- SM2-BENCH-FLAGS...]
 #   e.g. bench/alu_peak.sh --threads 2 -- --transcendentals fast
 #
-# Peak = threads x 2 FMA units x 16 fp32 lanes x 2 operations x clock (the formula of issue 9;
-# the clock is /proc/cpuinfo's "cpu MHz" unless --ghz is given). Operations per pixel: per
+# Peak = threads x 2 FMA units x fp32 lanes x 2 operations x clock (the formula of issue 9; the
+# lanes are the host's vector width, 16 with AVX-512, 8 with AVX2 and FMA, 4 otherwise, from
+# /proc/cpuinfo's flags; the clock is its "cpu MHz" unless --ghz is given). Operations per pixel: per
 # written component, mad/lrp 2, add/mul/min/max/cmp/frc/abs 1, _sat +1, mov 0; per
 # instruction, dp3 5, dp4 7, nrm 9 (dp3, rsq, 3 mul), rcp/rsq/exp/log 1, pow 3 (log, mul, exp).
 set -euo pipefail
@@ -31,6 +32,12 @@ if [ -z "$ghz" ]; then
     ghz=$(awk -F: '/^cpu MHz/ { printf "%.3f", $2 / 1000; exit }' /proc/cpuinfo)
     [ -n "$ghz" ] || { echo "alu_peak.sh: no 'cpu MHz' in /proc/cpuinfo; give --ghz" >&2; exit 2; }
 fi
+flags=$(awk -F: '/^flags/ { print $2; exit }' /proc/cpuinfo)
+case " $flags " in
+    *" avx512f "*) lanes=16 ;;
+    *" avx2 "*) lanes=8 ;;
+    *) lanes=4 ;;
+esac
 shader=samples/shaders/alu64.ps.asm
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -89,12 +96,12 @@ EOF
 out=$("$sm2" bench "$stream" --threads "$threads" --repeat "$repeat" "$@")
 echo "$out" | grep -E "time per run|pixels shaded/s|engine" || true
 pixels_per_second=$(echo "$out" | awk '/^pixels shaded\/s:/ { v = $3; u = $4; if (u == "M") v *= 1e6; else if (u == "k") v *= 1e3; else if (u == "G") v *= 1e9; print v }')
-python3 - "$operations" "$pixels_per_second" "$threads" "$ghz" <<'EOF'
+python3 - "$operations" "$pixels_per_second" "$threads" "$ghz" "$lanes" <<'EOF'
 import sys
-ops, rate, threads, ghz = int(sys.argv[1]), float(sys.argv[2]), int(sys.argv[3]), float(sys.argv[4])
+ops, rate, threads, ghz, lanes = int(sys.argv[1]), float(sys.argv[2]), int(sys.argv[3]), float(sys.argv[4]), int(sys.argv[5])
 achieved = ops * rate
-peak = threads * 2 * 16 * 2 * ghz * 1e9
+peak = threads * 2 * lanes * 2 * ghz * 1e9
 print("alu64: %d fp32 operations per pixel; %.1f Mpixels/s -> %.2f GFLOP/s" % (ops, rate / 1e6, achieved / 1e9))
-print("peak: %d thread(s) x 2 FMA x 16 lanes x 2 x %.3f GHz = %.1f GFLOP/s" % (threads, ghz, peak / 1e9))
+print("peak: %d thread(s) x 2 FMA x %d lanes x 2 x %.3f GHz = %.1f GFLOP/s" % (threads, lanes, ghz, peak / 1e9))
 print("share of the fp32 FMA peak: %.2f%% (goal >= 25%%)" % (100 * achieved / peak))
 EOF
