@@ -1,5 +1,7 @@
-// The UNORM8 conversions of format_layout.h for 16 lanes in AVX-512 registers, shared by the
-// sampler's and the output merger's block paths (callers check the CPU before calling).
+// The block paths' CPU checks and target attributes, and the AVX-512 instance of the UNORM
+// conversions of format_layout.h for 16 lanes (unorm8_kernels.inc; avx512_on_avx2.h holds the
+// AVX2 instance), shared by the sampler's and the output merger's block paths (callers check
+// the CPU before calling).
 #pragma once
 
 #include <cstdint>
