@@ -365,36 +365,36 @@ void expect_every_texel(Format format, uint32_t count, uint32_t width, unsigned 
         std::memcpy(bytes.data() + (v / width) * pitch + (v % width) * texel_bytes, &texel, texel_bytes);
     }
     for (const bool avx2 : forced_avx2_choices()) {
-    TextureSampler s;
-    s.set_texture(0, &t);
-    s.set_block_avx2(avx2);
-    SamplerState st;
-    st.address_u = st.address_v = TextureAddress::Clamp;
-    st.mag_filter = st.min_filter = TextureFilter::Point;
-    st.mip_filter = TextureFilter::None;
-    s.set_state(0, st);
-    s.prepare();
-    if (cpu_runs_block_path()) {
-        ASSERT_TRUE(s.block_path_applies(0)) << format_info(format)->name;
-    }
-    for (uint32_t first = 0; first < count; first += emu::kBatchLanes) {
-        std::array<emu::FloatLanes, 4> coords{};
-        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-            const uint32_t v = std::min(first + l, count - 1);
-            coords[0][l] = (static_cast<float>(v % width) + 0.5f) / static_cast<float>(width);
-            coords[1][l] = (static_cast<float>(v / width) + 0.5f) / static_cast<float>(height);
+        TextureSampler s;
+        s.set_texture(0, &t);
+        s.set_block_avx2(avx2);
+        SamplerState st;
+        st.address_u = st.address_v = TextureAddress::Clamp;
+        st.mag_filter = st.min_filter = TextureFilter::Point;
+        st.mip_filter = TextureFilter::None;
+        s.set_state(0, st);
+        s.prepare();
+        if (cpu_runs_block_path()) {
+            ASSERT_TRUE(s.block_path_applies(0)) << format_info(format)->name;
         }
-        emu::TextureRequest r;
-        r.coordinates = &coords;
-        std::array<emu::FloatLanes, 4> texels;
-        s.sample(r, texels);
-        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-            const uint32_t v = std::min(first + l, count - 1);
-            ASSERT_EQ(std::bit_cast<uint32_t>(texels[channel][l]), expected_of(v))
-                << format_info(format)->name << " texel value 0x" << std::hex << texel_of(v)
-                << (avx2 ? " (AVX2 instance)" : "");
+        for (uint32_t first = 0; first < count; first += emu::kBatchLanes) {
+            std::array<emu::FloatLanes, 4> coords{};
+            for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+                const uint32_t v = std::min(first + l, count - 1);
+                coords[0][l] = (static_cast<float>(v % width) + 0.5f) / static_cast<float>(width);
+                coords[1][l] = (static_cast<float>(v / width) + 0.5f) / static_cast<float>(height);
+            }
+            emu::TextureRequest r;
+            r.coordinates = &coords;
+            std::array<emu::FloatLanes, 4> texels;
+            s.sample(r, texels);
+            for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+                const uint32_t v = std::min(first + l, count - 1);
+                ASSERT_EQ(std::bit_cast<uint32_t>(texels[channel][l]), expected_of(v))
+                    << format_info(format)->name << " texel value 0x" << std::hex << texel_of(v)
+                    << (avx2 ? " (AVX2 instance)" : "");
+            }
         }
-    }
     }
 }
 
