@@ -34,7 +34,9 @@ namespace {
 }  // namespace
 }  // namespace avx2
 
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+// (Not target_clones: clang 14 compiled a cloned function declared in a header without the
+// attribute for x86-64-v4 alone, an illegal instruction on CPUs without AVX-512. The block
+// kernels above do the vector work.)
 void interpolate(const PrimitiveSetup& p, std::span<const Quad> quads, uint16_t varyings,
                  emu::Batch& batch, PixelLanes& lanes, bool reference) {
     constexpr unsigned N = emu::kBatchLanes;

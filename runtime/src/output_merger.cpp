@@ -443,8 +443,9 @@ Vec4 blend(const BlendState& b, const Vec4& src_in, const Vec4& dst, bool fixed_
     return r;
 }
 
-// Cloned for x86-64-v4: its per-lane loops (keys, offsets, the depth clamp) vectorize with AVX-512.
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+// (Not target_clones, unlike the internal functions above: clang 14 does not multiversion a
+// function whose header declaration lacks the attribute; it compiled this one for x86-64-v4
+// alone, an illegal instruction on CPUs without AVX-512.)
 emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const MergeInput& in) {
     const emu::Batch& batch = *in.batch;
     const PixelLanes& lanes = *in.lanes;
