@@ -7,32 +7,11 @@
 
 #include "unorm8_avx512.h"
 
-namespace sm2::runtime {
-
-// The kernels, once per instruction set (sampler.cpp explains the two inclusions).
-namespace avx512 {
-namespace {
-#define SM2_BLOCK SM2_AVX512
-SM2_AVX512_CODE_BEGIN
-#include "interpolation_block.inc"
-SM2_AVX512_CODE_END
-#undef SM2_BLOCK
-}  // namespace
-}  // namespace avx512
-
-}  // namespace sm2::runtime
-
-#include "avx512_on_avx2.h"
+// The block kernels, once per instruction set (block_instances.inc).
+#define SM2_BLOCK_KERNELS "interpolation_block.inc"
+#include "block_instances.inc"
 
 namespace sm2::runtime {
-
-namespace avx2 {
-namespace {
-#define SM2_BLOCK SM2_AVX2
-#include "interpolation_block.inc"
-#undef SM2_BLOCK
-}  // namespace
-}  // namespace avx2
 
 // (Not target_clones: clang 14 compiled a cloned function declared in a header without the
 // attribute for x86-64-v4 alone, an illegal instruction on CPUs without AVX-512. The block

@@ -338,30 +338,13 @@ __mmask8 row_mask(emu::LaneMask lanes, unsigned row) {
 
 }  // namespace
 
-// The kernels, once per instruction set (sampler.cpp explains the two inclusions).
-namespace avx512 {
-namespace {
-#define SM2_BLOCK SM2_AVX512
-SM2_AVX512_CODE_BEGIN
-#include "output_merger_block.inc"
-SM2_AVX512_CODE_END
-#undef SM2_BLOCK
-}  // namespace
-}  // namespace avx512
-
 }  // namespace sm2::runtime
 
-#include "avx512_on_avx2.h"
+// The block kernels, once per instruction set (block_instances.inc).
+#define SM2_BLOCK_KERNELS "output_merger_block.inc"
+#include "block_instances.inc"
 
 namespace sm2::runtime {
-
-namespace avx2 {
-namespace {
-#define SM2_BLOCK SM2_AVX2
-#include "output_merger_block.inc"
-#undef SM2_BLOCK
-}  // namespace
-}  // namespace avx2
 
 OutputMergerState output_merger_state(const RenderState& rs) {
     OutputMergerState s;

@@ -825,37 +825,13 @@ bool block_supported(const Context& c, BlockLevels& levels) {
 
 }  // namespace
 
-// The block path, once per instruction set: the kernels in sampler_block.inc are written in
-// AVX-512 intrinsics; namespace avx2 compiles them against avx512_on_avx2.h's functions of the
-// same names. (That header comes after the AVX-512 instance: it #undefs the intrinsics that
-// clang defines as macros.)
-namespace avx512 {
-namespace {
-#define SM2_BLOCK SM2_AVX512
-SM2_AVX512_CODE_BEGIN
-#include "sampler_block.inc"
-SM2_AVX512_CODE_END
-#undef SM2_BLOCK
-}  // namespace
-}  // namespace avx512
-
 }  // namespace sm2::runtime
 
-#include "avx512_on_avx2.h"
+// The block kernels, once per instruction set (block_instances.inc).
+#define SM2_BLOCK_KERNELS "sampler_block.inc"
+#include "block_instances.inc"
 
 namespace sm2::runtime {
-
-namespace avx2 {
-namespace {
-#define SM2_BLOCK SM2_AVX2
-#include "sampler_block.inc"
-#undef SM2_BLOCK
-}  // namespace
-}  // namespace avx2
-
-namespace {
-
-}  // namespace
 
 TextureSampler::LodInfo TextureSampler::level_of_detail(unsigned stage, const std::array<float, 3>& ddx_texels,
                                                         const std::array<float, 3>& ddy_texels, float lod_bias) const {
