@@ -220,6 +220,9 @@ struct TextureSampler::BlockLevels {
     // A8B8G8R8, L8, A8L8, A8): the filter's instance for them has the fields' masks and
     // maximum in its code.
     bool bytes = false;
+    // Bit k: the filter sums channel k exactly (exact_bilinear()): fixed8 weights on a UNORM
+    // field of at most 8 bits, not sRGB-decoded. Set once here, not tested per lookup.
+    unsigned exact_channels = 0;
     // Which instance of the kernels runs: AVX-512's, or AVX2's (sampler_block.inc).
     bool avx512 = true;
 };
@@ -772,6 +775,11 @@ bool block_supported(const Context& c, BlockLevels& levels) {
         return (ch.kind == BlockChannel::Kind::Unorm && ch.mask == 0xFFu && ch.high == 0) ||
                ch.kind == BlockChannel::Kind::One || ch.kind == BlockChannel::Kind::Zero;
     });
+    levels.exact_channels = 0;
+    for (unsigned k = 0; k < 4; ++k) {
+        const BlockChannel& ch = (*format)[k];
+        if (c.fixed && !c.srgb && ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 0xFFu) levels.exact_channels |= 1u << k;
+    }
     levels.texel_bytes = c.bpp;
     if (c.texture->levels() > BlockLevels::kMax || (c.bpp != 8 && c.bpp != 4 && c.bpp != 2 && c.bpp != 1)) return false;
     if (!cpu_has_avx512() && !cpu_has_avx2()) return false;
