@@ -162,18 +162,21 @@ struct Doubles512 {
 // ---------------------------------------------------------------------------------------------
 // Masks: bit i of a 16-bit mask is 32-bit lane i; bit i of an 8-bit mask is 64-bit lane i.
 
-// The lanes of `k` (bits 0-7, or 8-15 with `high`) as all-ones 32-bit lanes.
+// The lanes of `k` (bits 0-7, or 8-15 with `high`) as the sign bits of 32-bit lanes: bit i
+// shifted up to bit 31 of lane i. The other bits are not defined: every user of these vectors
+// reads sign bits only (blendv_ps, maskload/maskstore, the gathers' masks). One broadcast
+// serves both halves, and a shift replaces the mask-and-compare per half.
 SM2_AVX2_INLINE __m256i lanes32(unsigned k, bool high) {
-    const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    const __m256i broadcast = _mm256_set1_epi32(static_cast<int>(high ? (k >> 8) & 0xFF : k & 0xFF));
-    return _mm256_cmpeq_epi32(_mm256_and_si256(broadcast, bits), bits);
+    const __m256i to_sign = high ? _mm256_setr_epi32(23, 22, 21, 20, 19, 18, 17, 16)
+                                 : _mm256_setr_epi32(31, 30, 29, 28, 27, 26, 25, 24);
+    return _mm256_sllv_epi32(_mm256_set1_epi32(static_cast<int>(k)), to_sign);
 }
 
-// The lanes of 8-bit mask `k` (bits 0-3, or 4-7 with `high`) as all-ones 64-bit lanes.
+// The lanes of 8-bit mask `k` (bits 0-3, or 4-7 with `high`) as the sign bits of 64-bit lanes
+// (the other bits not defined, as lanes32()).
 SM2_AVX2_INLINE __m256i lanes64(unsigned k, bool high) {
-    const __m256i bits = _mm256_setr_epi64x(1, 2, 4, 8);
-    const __m256i broadcast = _mm256_set1_epi64x(static_cast<long long>(high ? (k >> 4) & 0xF : k & 0xF));
-    return _mm256_cmpeq_epi64(_mm256_and_si256(broadcast, bits), bits);
+    const __m256i to_sign = high ? _mm256_setr_epi64x(59, 58, 57, 56) : _mm256_setr_epi64x(63, 62, 61, 60);
+    return _mm256_sllv_epi64(_mm256_set1_epi64x(static_cast<long long>(k)), to_sign);
 }
 
 SM2_AVX2_INLINE __mmask16 mask32(__m256i lo, __m256i hi) {
@@ -531,10 +534,12 @@ SM2_AVX2_INLINE __mmask16 _mm512_movepi32_mask(Ints512 a) { return mask32(a.lo, 
 // Masked moves and operations: lanes outside the mask keep `src` (maskz: become 0)
 
 SM2_AVX2_INLINE __m256i select32(__m256i src, unsigned k, bool high, __m256i a) {
-    return _mm256_blendv_epi8(src, a, lanes32(k, high));
+    return _mm256_castps_si256(
+        _mm256_blendv_ps(_mm256_castsi256_ps(src), _mm256_castsi256_ps(a), _mm256_castsi256_ps(lanes32(k, high))));
 }
 SM2_AVX2_INLINE __m256i select64(__m256i src, unsigned k, bool high, __m256i a) {
-    return _mm256_blendv_epi8(src, a, lanes64(k, high));
+    return _mm256_castpd_si256(
+        _mm256_blendv_pd(_mm256_castsi256_pd(src), _mm256_castsi256_pd(a), _mm256_castsi256_pd(lanes64(k, high))));
 }
 SM2_AVX2_INLINE Ints512 _mm512_mask_mov_epi32(Ints512 src, __mmask16 k, Ints512 a) {
     return {select32(src.lo, k, false, a.lo), select32(src.hi, k, true, a.hi)};
