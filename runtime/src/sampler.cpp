@@ -220,6 +220,9 @@ struct TextureSampler::BlockLevels {
     // A8B8G8R8, L8, A8L8, A8): the filter's instance for them has the fields' masks and
     // maximum in its code.
     bool bytes = false;
+    // Every channel a UNORM field of at most 5 bits or a constant (A4R4G4B4, A1R5G5B5,
+    // X4R4G4B4, A4L4): the filter's instance for them decodes each tap by its table inline.
+    bool narrow = false;
     // Bit k: the filter sums channel k exactly (exact_bilinear()): fixed8 weights on a UNORM
     // field of at most 8 bits, not sRGB-decoded. Set once here, not tested per lookup.
     unsigned exact_channels = 0;
@@ -773,6 +776,10 @@ bool block_supported(const Context& c, BlockLevels& levels) {
     });
     levels.bytes = std::all_of(format->begin(), format->end(), [](const BlockChannel& ch) {
         return (ch.kind == BlockChannel::Kind::Unorm && ch.mask == 0xFFu && ch.high == 0) ||
+               ch.kind == BlockChannel::Kind::One || ch.kind == BlockChannel::Kind::Zero;
+    });
+    levels.narrow = std::all_of(format->begin(), format->end(), [](const BlockChannel& ch) {
+        return (ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 31u && ch.high == 0) ||
                ch.kind == BlockChannel::Kind::One || ch.kind == BlockChannel::Kind::Zero;
     });
     levels.exact_channels = 0;
