@@ -145,6 +145,8 @@
 #undef _mm512_cvtepi32_pd
 #undef _mm512_insertf64x4
 #undef _mm512_maskz_loadu_epi32
+#undef _mm512_setr_epi64
+#undef _mm512_mask_cmpge_epi64_mask
 
 namespace sm2::runtime::avx2 {
 
@@ -199,6 +201,10 @@ SM2_AVX2_INLINE Ints512 _mm512_set1_epi64(long long v) { return {_mm256_set1_epi
 SM2_AVX2_INLINE Ints512 _mm512_setr_epi32(int e0, int e1, int e2, int e3, int e4, int e5, int e6, int e7, int e8, int e9,
                                           int e10, int e11, int e12, int e13, int e14, int e15) {
     return {_mm256_setr_epi32(e0, e1, e2, e3, e4, e5, e6, e7), _mm256_setr_epi32(e8, e9, e10, e11, e12, e13, e14, e15)};
+}
+SM2_AVX2_INLINE Ints512 _mm512_setr_epi64(long long e0, long long e1, long long e2, long long e3, long long e4,
+                                          long long e5, long long e6, long long e7) {
+    return {_mm256_setr_epi64x(e0, e1, e2, e3), _mm256_setr_epi64x(e4, e5, e6, e7)};
 }
 SM2_AVX2_INLINE Floats512 _mm512_setzero_ps() { return {_mm256_setzero_ps(), _mm256_setzero_ps()}; }
 SM2_AVX2_INLINE Doubles512 _mm512_setzero_pd() { return {_mm256_setzero_pd(), _mm256_setzero_pd()}; }
@@ -527,6 +533,10 @@ SM2_AVX2_INLINE __mmask16 _mm512_mask_cmpneq_epi32_mask(__mmask16 k, Ints512 a, 
 }
 SM2_AVX2_INLINE __mmask16 _mm512_mask_cmple_epi32_mask(__mmask16 k, Ints512 a, Ints512 b) {
     return static_cast<__mmask16>(k & ~mask32(_mm256_cmpgt_epi32(a.lo, b.lo), _mm256_cmpgt_epi32(a.hi, b.hi)));
+}
+// 64-bit lanes: a >= b where k has the lane's bit, as no b > a.
+SM2_AVX2_INLINE __mmask8 _mm512_mask_cmpge_epi64_mask(__mmask8 k, Ints512 a, Ints512 b) {
+    return static_cast<__mmask8>(k & ~mask64(_mm256_cmpgt_epi64(b.lo, a.lo), _mm256_cmpgt_epi64(b.hi, a.hi)));
 }
 SM2_AVX2_INLINE __mmask16 _mm512_movepi32_mask(Ints512 a) { return mask32(a.lo, a.hi); }
 

@@ -57,59 +57,15 @@ bool line_covers(const LineCoverage& l, int32_t px, int32_t py) {
     return major >= first && major <= last && line_minor_at(l, major) == minor;
 }
 
-SM2_AVX512_CODE_BEGIN
-
-// The partial-coverage loop of rasterize() with 8 quads of a row at a time: each edge's value
-// at the 8 quads' top-left pixels in one register (the same int64 sums as the scalar loop:
-// the row's start plus k steps of 2 pixels), its signs at the four pixels of each quad as four
-// 8-bit masks. The quads come out in the same order with the same masks.
-SM2_AVX512 void rasterize_partial_avx512(const PrimitiveSetup& p, const PixelRect& r, std::vector<Quad>& quads) {
-    const int32_t qx0 = even_floor(r.left);
-    const int32_t row_quads = (r.right - qx0 + 1) / 2;
-    const __m512i zero = _mm512_setzero_si512();
-    const __m512i lane = _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 6, 7);
-    __m512i dx[3], dy[3], dxy[3], first_step[3], group_step[3];
-    for (unsigned e = 0; e < 3; ++e) {
-        const int64_t a = p.edges[e].a * kSubPixelScale, b = p.edges[e].b * kSubPixelScale;
-        dx[e] = _mm512_set1_epi64(a);
-        dy[e] = _mm512_set1_epi64(b);
-        dxy[e] = _mm512_set1_epi64(a + b);
-        first_step[e] = _mm512_mullo_epi64(lane, _mm512_set1_epi64(2 * a));  // quad k: k steps of 2 pixels
-        group_step[e] = _mm512_set1_epi64(16 * a);                            // 8 quads on
-    }
-    for (int32_t qy = even_floor(r.top); qy < r.bottom; qy += 2) {
-        const int64_t Y = static_cast<int64_t>(qy) * kSubPixelScale;
-        const unsigned rows = (qy >= r.top ? 0x3u : 0u) | (qy + 1 < r.bottom ? 0xCu : 0u);
-        __m512i v[3];
-        for (unsigned e = 0; e < 3; ++e)
-            v[e] = _mm512_add_epi64(_mm512_set1_epi64(p.edges[e].at(static_cast<int64_t>(qx0) * kSubPixelScale, Y)),
-                                    first_step[e]);
-        for (int32_t i = 0; i < row_quads; i += 8) {
-            __mmask8 c0 = 0xFF, c1 = 0xFF, c2 = 0xFF, c3 = 0xFF;  // pixel (0,0), (1,0), (0,1), (1,1) of each quad
-            for (unsigned e = 0; e < 3; ++e) {
-                c0 = _mm512_mask_cmpge_epi64_mask(c0, v[e], zero);
-                c1 = _mm512_mask_cmpge_epi64_mask(c1, _mm512_add_epi64(v[e], dx[e]), zero);
-                c2 = _mm512_mask_cmpge_epi64_mask(c2, _mm512_add_epi64(v[e], dy[e]), zero);
-                c3 = _mm512_mask_cmpge_epi64_mask(c3, _mm512_add_epi64(v[e], dxy[e]), zero);
-                v[e] = _mm512_add_epi64(v[e], group_step[e]);
-            }
-            unsigned any = static_cast<unsigned>(c0 | c1 | c2 | c3);
-            if (row_quads - i < 8) any &= (1u << (row_quads - i)) - 1u;
-            while (any != 0) {
-                const auto k = static_cast<unsigned>(__builtin_ctz(any));
-                any &= any - 1u;
-                const int32_t qx = qx0 + 2 * (i + static_cast<int32_t>(k));
-                const unsigned corners = (c0 >> k & 1u) | (c1 >> k & 1u) << 1 | (c2 >> k & 1u) << 2 | (c3 >> k & 1u) << 3;
-                const unsigned mask = corners & rows & ((qx >= r.left ? 0x5u : 0u) | (qx + 1 < r.right ? 0xAu : 0u));
-                if (mask) quads.push_back({qx, qy, static_cast<uint8_t>(mask)});
-            }
-        }
-    }
-}
-
-SM2_AVX512_CODE_END
 
 }  // namespace
+}  // namespace sm2::runtime
+
+// The block kernels, once per instruction set (block_instances.inc).
+#define SM2_BLOCK_KERNELS "rasterizer_block.inc"
+#include "block_instances.inc"
+
+namespace sm2::runtime {
 
 PixelRect tile_rect(int32_t tx, int32_t ty) {
     return {tx * kTileSize, ty * kTileSize, (tx + 1) * kTileSize, (ty + 1) * kTileSize};
@@ -183,7 +139,11 @@ void rasterize(const PrimitiveSetup& p, const PixelRect& region, std::vector<Qua
             return;
         }
         if (!portable && cpu_has_avx512()) {
-            rasterize_partial_avx512(p, r, quads);
+            avx512::rasterize_partial_block(p, r, quads);
+            return;
+        }
+        if (!portable && cpu_has_avx2()) {
+            avx2::rasterize_partial_block(p, r, quads);
             return;
         }
         // Each quad's mask without branches: per edge, its sign at the quad's four pixels (bit i
