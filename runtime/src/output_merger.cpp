@@ -516,12 +516,7 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
                                static_cast<uint32_t>(lanes.y[0]) + 2 <= height;
                     for (unsigned q = 1; q < 4; ++q)
                         run = run && lanes.x[4 * q] == lanes.x[0] + static_cast<int32_t>(2 * q) && lanes.y[4 * q] == lanes.y[0];
-                    // (Lane 0's texel: inside the surface, below 2^31 bytes.)
-                    const int64_t row_run =
-                        run ? static_cast<int64_t>(lanes.y[0]) * static_cast<int64_t>(surface->row_pitch()) +
-                                  static_cast<int64_t>(lanes.x[0]) * 4 * fmt.words
-                            : -1;
-                    const auto run_kernel = [&](auto kernel) { kernel(s.blend, fmt, *surface, mask, src, lanes, row_run, write); };
+                    const auto run_kernel = [&](auto kernel) { kernel(s.blend, fmt, *surface, mask, src, lanes, run, write); };
                     if (fmt.words == 2) avx512_block ? run_kernel(avx512::merge_unorm8_block<2, false>) : run_kernel(avx2::merge_unorm8_block<2, false>);
                     else if (fmt.valid) avx512_block ? run_kernel(avx512::merge_unorm8_block<1, true>) : run_kernel(avx2::merge_unorm8_block<1, true>);
                     else avx512_block ? run_kernel(avx512::merge_unorm8_block<1, false>) : run_kernel(avx2::merge_unorm8_block<1, false>);

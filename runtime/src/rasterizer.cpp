@@ -57,7 +57,6 @@ bool line_covers(const LineCoverage& l, int32_t px, int32_t py) {
     return major >= first && major <= last && line_minor_at(l, major) == minor;
 }
 
-
 }  // namespace
 }  // namespace sm2::runtime
 

@@ -774,14 +774,15 @@ bool block_supported(const Context& c, BlockLevels& levels) {
     levels.wide_unorm = std::all_of(format->begin(), format->end(), [&](const BlockChannel& ch) {
         return ch.kind == BlockChannel::Kind::Unorm && ch.mask > 31u && !(c.fixed && ch.mask <= 0xFFu);
     });
-    levels.bytes = std::all_of(format->begin(), format->end(), [](const BlockChannel& ch) {
-        return (ch.kind == BlockChannel::Kind::Unorm && ch.mask == 0xFFu && ch.high == 0) ||
-               ch.kind == BlockChannel::Kind::One || ch.kind == BlockChannel::Kind::Zero;
-    });
-    levels.narrow = std::all_of(format->begin(), format->end(), [](const BlockChannel& ch) {
-        return (ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 31u && ch.high == 0) ||
-               ch.kind == BlockChannel::Kind::One || ch.kind == BlockChannel::Kind::Zero;
-    });
+    // Every channel a constant or a UNORM field of the first word whose mask passes `fits`.
+    const auto fields_or_constants = [&](auto fits) {
+        return std::all_of(format->begin(), format->end(), [&](const BlockChannel& ch) {
+            return (ch.kind == BlockChannel::Kind::Unorm && fits(ch.mask) && ch.high == 0) ||
+                   ch.kind == BlockChannel::Kind::One || ch.kind == BlockChannel::Kind::Zero;
+        });
+    };
+    levels.bytes = fields_or_constants([](uint32_t mask) { return mask == 0xFFu; });
+    levels.narrow = fields_or_constants([](uint32_t mask) { return mask <= 31u; });
     levels.exact_channels = 0;
     for (unsigned k = 0; k < 4; ++k) {
         const BlockChannel& ch = (*format)[k];
