@@ -111,96 +111,13 @@ DepthStencilState depth_stencil_state(const RenderState& rs) {
     return s;
 }
 
-namespace {
+}  // namespace sm2::runtime
 
-SM2_AVX512_CODE_BEGIN
+// The block kernels, once per instruction set (block_instances.inc).
+#define SM2_BLOCK_KERNELS "depth_stencil_block.inc"
+#include "block_instances.inc"
 
-#define SM2_AVX512_CD __attribute__((target("avx512f,avx512dq,avx512vl,avx512cd")))
-
-bool cpu_has_avx512_cd() {
-    static const bool has = cpu_has_avx512() && __builtin_cpu_supports("avx512cd");
-    return has;
-}
-
-// compare() for 16 lanes: C++'s comparison operators, so != is true for NaN (unordered) and
-// the others false.
-SM2_AVX512_CD inline __mmask16 compare16(CompareFunc func, __m512 a, __m512 b) {
-    switch (func) {
-    case CompareFunc::Never: return 0;
-    case CompareFunc::Less: return _mm512_cmp_ps_mask(a, b, _CMP_LT_OQ);
-    case CompareFunc::Equal: return _mm512_cmp_ps_mask(a, b, _CMP_EQ_OQ);
-    case CompareFunc::LessEqual: return _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ);
-    case CompareFunc::Greater: return _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ);
-    case CompareFunc::NotEqual: return _mm512_cmp_ps_mask(a, b, _CMP_NEQ_UQ);
-    case CompareFunc::GreaterEqual: return _mm512_cmp_ps_mask(a, b, _CMP_GE_OQ);
-    case CompareFunc::Always: return 0xFFFF;
-    }
-    return 0;
-}
-
-SM2_AVX512_CD inline __mmask16 compare16(CompareFunc func, __m512i a, __m512i b) {
-    switch (func) {
-    case CompareFunc::Never: return 0;
-    case CompareFunc::Less: return _mm512_cmplt_epu32_mask(a, b);
-    case CompareFunc::Equal: return _mm512_cmpeq_epu32_mask(a, b);
-    case CompareFunc::LessEqual: return _mm512_cmple_epu32_mask(a, b);
-    case CompareFunc::Greater: return _mm512_cmpgt_epu32_mask(a, b);
-    case CompareFunc::NotEqual: return _mm512_cmpneq_epu32_mask(a, b);
-    case CompareFunc::GreaterEqual: return _mm512_cmpge_epu32_mask(a, b);
-    case CompareFunc::Always: return 0xFFFF;
-    }
-    return 0;
-}
-
-// The depth test without stencil for 16 lanes; false (nothing done) when two live lanes share a
-// pixel, which the lane-by-lane loop must then take (a lane sees the depth an earlier one wrote).
-// quantize_depth() of n <= 24 bits in double: z has 24 significant bits and 2^n - 1 at most 24,
-// so z (2^n - 1) is exact, and so is adding 0.5 (at most 49 bits), whose truncation is the
-// rounding half up of the integer code.
-SM2_AVX512_CD bool depth_test16(const DepthStencilState& st, DepthStencilSurface& surface,
-                                const std::array<int32_t, emu::kBatchLanes>& x,
-                                const std::array<int32_t, emu::kBatchLanes>& y,
-                                const std::array<float, emu::kBatchLanes>& depth, emu::LaneMask live,
-                                emu::LaneMask& passed) {
-    const __m512i xs = _mm512_loadu_si512(x.data()), ys = _mm512_loadu_si512(y.data());
-    const __m512i width = _mm512_set1_epi32(static_cast<int32_t>(surface.width()));
-    const __m512i height = _mm512_set1_epi32(static_cast<int32_t>(surface.height()));
-    // Unsigned compares: negative coordinates are outside too.
-    const __mmask16 inside = _mm512_mask_cmplt_epu32_mask(static_cast<__mmask16>(live), xs, width) &
-                             _mm512_cmplt_epu32_mask(ys, height);
-    // Lanes outside get distinct negative indices, so that only the inside lanes can conflict.
-    const __m512i outside_index = _mm512_setr_epi32(-1, -2, -3, -4, -5, -6, -7, -8, -9, -10, -11, -12, -13, -14, -15, -16);
-    const __m512i at = _mm512_mask_mov_epi32(outside_index, inside, _mm512_add_epi32(_mm512_mullo_epi32(ys, width), xs));
-    if (_mm512_test_epi32_mask(_mm512_conflict_epi32(at), _mm512_conflict_epi32(at))) return false;
-    __m512 z = _mm512_loadu_ps(depth.data());
-    z = _mm512_maskz_mov_ps(_mm512_cmp_ps_mask(z, _mm512_setzero_ps(), _CMP_GT_OQ), z);  // also NaN -> 0
-    z = _mm512_min_ps(z, _mm512_set1_ps(1.0f));
-    uint32_t* const stored_depth = surface.depth_data();
-    const __m512i stored = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), inside, at, stored_depth, 4);
-    __m512i incoming;
-    __mmask16 pass;
-    if (surface.info().float_depth) {
-        incoming = _mm512_castps_si512(z);
-        pass = compare16(st.depth_func, z, _mm512_castsi512_ps(stored));
-    } else {
-        const __m512d scale = _mm512_set1_pd(static_cast<double>((uint64_t{1} << surface.info().depth_bits) - 1));
-        const __m512d half = _mm512_set1_pd(0.5);
-        const __m512d lo = _mm512_add_pd(_mm512_mul_pd(_mm512_cvtps_pd(_mm512_castps512_ps256(z)), scale), half);
-        const __m512d hi = _mm512_add_pd(
-            _mm512_mul_pd(_mm512_cvtps_pd(_mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(z), 1))), scale), half);
-        incoming = _mm512_inserti64x4(_mm512_castsi256_si512(_mm512_cvttpd_epu32(lo)), _mm512_cvttpd_epu32(hi), 1);
-        pass = compare16(st.depth_func, incoming, stored);
-    }
-    pass &= inside;
-    if (st.depth_write) _mm512_mask_i32scatter_epi32(stored_depth, pass, at, incoming, 4);
-    passed = pass;
-    return true;
-}
-
-#undef SM2_AVX512_CD
-SM2_AVX512_CODE_END
-
-}  // namespace
+namespace sm2::runtime {
 
 emu::LaneMask depth_stencil_test(const DepthStencilState& st, DepthStencilSurface* surface,
                                  const std::array<int32_t, emu::kBatchLanes>& x,
@@ -208,11 +125,15 @@ emu::LaneMask depth_stencil_test(const DepthStencilState& st, DepthStencilSurfac
                                  const std::array<float, emu::kBatchLanes>& depth,
                                  emu::LaneMask live, bool clockwise, bool per_lane) {
     if (!surface || !st.active()) return live;
-    static_assert(emu::kBatchLanes == 16, "depth_test16 covers 16 lanes");
+    static_assert(emu::kBatchLanes == 16, "depth_test_block covers 16 lanes");
     if (!per_lane && !st.stencil_enable && st.depth_enable &&
-        (surface->info().float_depth || surface->info().depth_bits <= 24) && cpu_has_avx512_cd()) {
+        (surface->info().float_depth || surface->info().depth_bits <= 24)) {
         emu::LaneMask passed = 0;
-        if (depth_test16(st, *surface, x, y, depth, live, passed)) return passed;
+        if (cpu_has_avx512()) {
+            if (avx512::depth_test_block(st, *surface, x.data(), y.data(), depth.data(), live, passed)) return passed;
+        } else if (cpu_has_avx2()) {
+            if (avx2::depth_test_block(st, *surface, x.data(), y.data(), depth.data(), live, passed)) return passed;
+        }
     }
     const DepthFormatInfo& info = surface->info();
     const bool has_stencil = st.stencil_enable && info.stencil_bits > 0;

@@ -296,7 +296,7 @@ TEST(DepthStencil, SixteenLanePathMatchesTheLaneByLaneLoop) {
     const CompareFunc funcs[] = {CompareFunc::Never, CompareFunc::Less, CompareFunc::Equal, CompareFunc::LessEqual,
                                  CompareFunc::Greater, CompareFunc::NotEqual, CompareFunc::GreaterEqual, CompareFunc::Always};
     unsigned passed_lanes = 0, failed_lanes = 0;
-    for (unsigned trial = 0; trial < 4000; ++trial) {
+    for (unsigned trial = 0; trial < 5000; ++trial) {
         const Format f = formats[trial % std::size(formats)];
         DepthStencilSurface a = make(f, 12, 9);
         const unsigned bits = a.info().float_depth ? 24 : a.info().depth_bits;
@@ -319,10 +319,23 @@ TEST(DepthStencil, SixteenLanePathMatchesTheLaneByLaneLoop) {
                 d[l] = dequantize_depth(a.info(), a.stored_depth(static_cast<uint32_t>(x[l]), static_cast<uint32_t>(y[l])));
         }
         if (trial % 5 != 0) {
-            // Distinct pixels, as a rasterized batch has (the 16-lane path's case).
+            // Four 2x2 quads at distinct places, lanes in quad order, as a rasterized batch has
+            // (the 16-lane path's case); some quads partly or wholly outside the surface, and
+            // in every seventh trial two quads at the same place (the lane-by-lane loop's case).
+            std::array<std::pair<int32_t, int32_t>, 4> quad{};
+            for (unsigned q = 0; q < 4; ++q) {
+                bool repeated = true;
+                while (repeated) {
+                    quad[q] = {2 * std::uniform_int_distribution<int32_t>(-1, 5)(rng),
+                               2 * std::uniform_int_distribution<int32_t>(-1, 4)(rng)};
+                    repeated = false;
+                    for (unsigned o = 0; o < q; ++o) repeated = repeated || quad[o] == quad[q];
+                }
+            }
+            if (trial % 7 == 0) quad[3] = quad[1];
             for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-                x[l] = static_cast<int32_t>(l % 4) * 3 - (trial % 3 == 0 ? 1 : 0);
-                y[l] = static_cast<int32_t>(l / 4) * 2 + static_cast<int32_t>(trial % 2);
+                x[l] = quad[l / 4].first + static_cast<int32_t>(l & 1u);
+                y[l] = quad[l / 4].second + static_cast<int32_t>(l >> 1 & 1u);
             }
         }
         const auto live = static_cast<emu::LaneMask>(rng() & 0xFFFF);
