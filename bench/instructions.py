@@ -6,6 +6,9 @@ that does not drift with the machine's load, where timings here drift by tens of
     bench/instructions.py STREAM --top 40
     bench/instructions.py STREAM --lines block_filter_level --files sampler_block.inc
         # one function's instructions per call, by the source line of FILES that inlined them
+    bench/instructions.py STREAM --out cg.out --lines merge
+        # keeps callgrind's output (with per-instruction counts) in cg.out, read again by a later
+        # call with the same --out instead of a new run
 
 Runs `sm2 bench --threads 1 --repeat 1 STREAM` under callgrind (valgrind runs the AVX2 block
 instances; it has no AVX-512). The counts include parsing the stream and compiling its shaders.
@@ -120,6 +123,8 @@ def main():
     parser.add_argument("--sm2", default="build/release/tools/sm2")
     parser.add_argument("--top", type=int, default=20)
     parser.add_argument("--lines", metavar="FUNCTION", help="a function name pattern (substring)")
+    parser.add_argument("--out", metavar="FILE",
+                        help="keep callgrind's output in FILE; an existing FILE is read instead of a new run")
     parser.add_argument("--files", default="sampler_block.inc,unorm8_kernels.inc,output_merger_block.inc,"
                         "interpolation_block.inc,rasterizer_block.inc",
                         help="comma-separated source files whose lines --lines reports")
@@ -128,8 +133,9 @@ def main():
         if subprocess.run(["which", tool], capture_output=True).returncode != 0:
             sys.exit(f"instructions.py: {tool} not found (apt-get install valgrind binutils)")
     with tempfile.TemporaryDirectory() as tmp:
-        out = os.path.join(tmp, "callgrind.out")
-        run_callgrind(args.sm2, args.stream, out, args.lines is not None)
+        out = args.out or os.path.join(tmp, "callgrind.out")
+        if not (args.out and os.path.exists(out)):
+            run_callgrind(args.sm2, args.stream, out, args.lines is not None or args.out is not None)
         total, counts = per_function(out)
         print(f"{args.stream}: {total:,} instructions (sm2 bench --threads 1 --repeat 1)")
         if args.lines is None:

@@ -94,6 +94,9 @@ float saturate(float v) {
 template <typename T>
 using Rgba = std::array<T, 4>;
 
+// A shader colour output of 16 lanes as the batch holds it (oC#'s register), read in place.
+using ShaderColor = emu::Batch::Register;
+
 // Channel c (0-2 colour, 3 alpha) of blend factor f (§12) for source s, destination d and
 // BLENDFACTOR k.
 template <typename T>
@@ -262,7 +265,7 @@ bool distinct_pixels(const std::array<uint32_t, kLanes>& key, bool quad_order) {
 // inside the surface). src: the shader colour of each lane.
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 void merge_unorm8(const BlendState& b, const Unorm8Texel& fmt, Surface& surface, uint32_t mask,
-                  const Rgba<Lanes>& src, const std::array<size_t, kLanes>& offset, emu::LaneMask write) {
+                  const ShaderColor& src, const std::array<size_t, kLanes>& offset, emu::LaneMask write) {
     std::byte* const bytes = surface.bytes().data();
     Rgba<Lanes> dst, blended;
     if (b.enable || mask != 0xF) {
@@ -278,8 +281,11 @@ void merge_unorm8(const BlendState& b, const Unorm8Texel& fmt, Surface& surface,
             for (unsigned l = 0; l < kLanes; ++l) dst[c].v[l] = decode_unorm8(stored[l] >> shift & 0xFFu);
         }
     }
-    Rgba<Lanes> clamped = src;
-    for (Lanes& c : clamped) saturate(c);
+    Rgba<Lanes> clamped;
+    for (unsigned c = 0; c < 4; ++c) {
+        clamped[c].v = src[c];
+        saturate(clamped[c]);
+    }
     if (b.enable) {
         blended = blend_unclamped(b, clamped, dst);
         for (Lanes& c : blended) saturate(c);
@@ -438,32 +444,36 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
     const bool block = avx512_block || cpu_has_avx2();
     if (lanes.quad_count * 4 < kLanes) live &= (emu::LaneMask{1} << (lanes.quad_count * 4)) - 1;
 
-    // Depth of each lane: oDepth (no bias) or the interpolated, biased depth.
-    std::array<float, kLanes> depth = lanes.depth;
-    if (in.shader_depth) depth = batch.depth()[0];
-    for (float& z : depth) z = saturate(z);
+    // Depth of each lane: oDepth (no bias) or the interpolated, biased depth, saturated. Read
+    // by fog alone: the depth test clamps (quantize_depth()) as saturate does.
+    const std::array<float, kLanes>& unclamped_depth = in.shader_depth ? batch.depth()[0] : lanes.depth;
 
-    // oC0 after fog (§7 step 2).
-    Rgba<Lanes> color0;
-    for (unsigned c = 0; c < 4; ++c) color0[c].v = batch.render_target(0)[c];
+    // oC0 after fog (§7 step 2): the batch's register itself where there is no fog.
+    ShaderColor fogged;
+    const ShaderColor* color0_in = &batch.render_target(0);
     if (s.fog_enable) {
+        std::array<float, kLanes> depth = unclamped_depth;
+        for (float& z : depth) z = saturate(z);
         std::array<float, kLanes> f;
         for (unsigned l = 0; l < kLanes; ++l)
             f[l] = fog_factor(s, lanes.fog[l], s.table_fog_of_w ? lanes.fog[l] : depth[l]);
+        fogged = batch.render_target(0);
         for (unsigned c = 0; c < 3; ++c)
             for (unsigned l = 0; l < kLanes; ++l)
-                color0[c].v[l] = f[l] * color0[c].v[l] + (1.0f - f[l]) * s.fog_color[c];
+                fogged[c][l] = f[l] * fogged[c][l] + (1.0f - f[l]) * s.fog_color[c];
+        color0_in = &fogged;
     }
+    const ShaderColor& color0 = *color0_in;
     // Alpha test (§10): failing pixels never reach the stencil stage. The alpha is clamped only
     // where render target 0 clamps: a float target tests what the shader wrote.
     if (s.alpha_test) {
         const bool clamps = !(targets.color[0] && is_float_target(targets.color[0]->format()));
         for (unsigned l = 0; l < kLanes; ++l)
-            if ((live >> l & 1u) && !alpha_test_passes(s, color0[3].v[l], clamps)) live &= ~(emu::LaneMask{1} << l);
+            if ((live >> l & 1u) && !alpha_test_passes(s, color0[3][l], clamps)) live &= ~(emu::LaneMask{1} << l);
     }
     // Stencil, depth, stencil update (§11).
     if (!in.depth_stencil_done)
-        live = depth_stencil_test(s.depth_stencil, targets.depth_stencil, lanes.x, lanes.y, depth, live,
+        live = depth_stencil_test(s.depth_stencil, targets.depth_stencil, lanes.x, lanes.y, unclamped_depth, live,
                                   lanes.clockwise, in.generic_path);
 
     for (unsigned t = 0; t < kMaxRenderTargets; ++t) {
@@ -500,10 +510,7 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
             distinct = distinct_pixels(key, misplaced == 0);
         }
         if (!write) continue;
-        Rgba<Lanes> other;
-        if (t != 0)
-            for (unsigned c = 0; c < 4; ++c) other[c].v = batch.render_target(t)[c];
-        const Rgba<Lanes>& src = t == 0 ? color0 : other;
+        const ShaderColor& src = t == 0 ? color0 : batch.render_target(t);
 
         if (!srgb && !in.generic_path) {
             const Unorm8Texel& fmt = unorm8_texel(*info);
@@ -545,7 +552,7 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
                     std::byte* const texel = bytes + static_cast<size_t>(lanes.y[l]) * surface->row_pitch() +
                                              static_cast<size_t>(lanes.x[l]) * fmt.bytes;
                     for (unsigned c = 0; c < 4; ++c)
-                        if (fmt.offset[c] >= 0 && (mask >> c & 1u)) std::memcpy(texel + fmt.offset[c], &src[c].v[l], 4);
+                        if (fmt.offset[c] >= 0 && (mask >> c & 1u)) std::memcpy(texel + fmt.offset[c], &src[c][l], 4);
                 }
                 continue;
             }
@@ -555,7 +562,7 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
         for (unsigned l = 0; l < kLanes; ++l) {
             if (!(write >> l & 1u)) continue;
             const auto px = static_cast<uint32_t>(lanes.x[l]), py = static_cast<uint32_t>(lanes.y[l]);
-            const Vec4 lane_src{src[0].v[l], src[1].v[l], src[2].v[l], src[3].v[l]};
+            const Vec4 lane_src{src[0][l], src[1][l], src[2][l], src[3][l]};
             const bool need_dst = s.blend.enable || mask != 0xF;
             Vec4 stored{};
             if (need_dst) stored = surface->read(px, py, 0);
