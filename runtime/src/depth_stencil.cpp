@@ -125,14 +125,15 @@ emu::LaneMask depth_stencil_test(const DepthStencilState& st, DepthStencilSurfac
                                  const std::array<float, emu::kBatchLanes>& depth,
                                  emu::LaneMask live, bool clockwise, bool per_lane) {
     if (!surface || !st.active()) return live;
-    static_assert(emu::kBatchLanes == 16, "depth_test_block covers 16 lanes");
-    if (!per_lane && !st.stencil_enable && st.depth_enable &&
-        (surface->info().float_depth || surface->info().depth_bits <= 24)) {
+    static_assert(emu::kBatchLanes == 16, "depth_stencil_block covers 16 lanes");
+    if (!per_lane && (surface->info().float_depth || surface->info().depth_bits <= 24)) {
         emu::LaneMask passed = 0;
         if (cpu_has_avx512()) {
-            if (avx512::depth_test_block(st, *surface, x.data(), y.data(), depth.data(), live, passed)) return passed;
+            if (avx512::depth_stencil_block(st, *surface, x.data(), y.data(), depth.data(), live, clockwise, passed))
+                return passed;
         } else if (cpu_has_avx2()) {
-            if (avx2::depth_test_block(st, *surface, x.data(), y.data(), depth.data(), live, passed)) return passed;
+            if (avx2::depth_stencil_block(st, *surface, x.data(), y.data(), depth.data(), live, clockwise, passed))
+                return passed;
         }
     }
     const DepthFormatInfo& info = surface->info();

@@ -286,9 +286,11 @@ float random_depth(std::mt19937& rng, unsigned bits) {
     }
 }
 
-// The 16-lane depth test (no stencil) against the lane-by-lane loop: the same lanes pass and the
-// same depth values are stored, for every format, compare function and write enable, with lanes
-// outside the surface, lanes off, repeated pixels and depth values on the formats' rounding ties.
+// The 16-lane depth/stencil test against the lane-by-lane loop: the same lanes pass and the
+// same depth and stencil values are stored, for every format, compare function, write enable
+// and (in half the trials) stencil state (both faces, every operation, reference, masks), with
+// lanes outside the surface, lanes off, repeated pixels and depth values on the formats'
+// rounding ties.
 TEST(DepthStencil, SixteenLanePathMatchesTheLaneByLaneLoop) {
     std::mt19937 rng(20261128);
     const Format formats[] = {Format::D16, Format::D16_LOCKABLE, Format::D24S8, Format::D24X8, Format::D15S1,
@@ -296,18 +298,34 @@ TEST(DepthStencil, SixteenLanePathMatchesTheLaneByLaneLoop) {
     const CompareFunc funcs[] = {CompareFunc::Never, CompareFunc::Less, CompareFunc::Equal, CompareFunc::LessEqual,
                                  CompareFunc::Greater, CompareFunc::NotEqual, CompareFunc::GreaterEqual, CompareFunc::Always};
     unsigned passed_lanes = 0, failed_lanes = 0;
-    for (unsigned trial = 0; trial < 5000; ++trial) {
+    for (unsigned trial = 0; trial < 8000; ++trial) {
         const Format f = formats[trial % std::size(formats)];
         DepthStencilSurface a = make(f, 12, 9);
         const unsigned bits = a.info().float_depth ? 24 : a.info().depth_bits;
         // Stored values: the quantized codes of random depths (some equal to what comes next).
         for (uint32_t y = 0; y < 9; ++y)
-            for (uint32_t x = 0; x < 12; ++x) a.set_depth(x, y, random_depth(rng, bits));
+            for (uint32_t x = 0; x < 12; ++x) {
+                a.set_depth(x, y, random_depth(rng, bits));
+                a.set_stencil(x, y, rng() % 4 == 0 ? a.stencil_max() : rng() % 4 == 0 ? 0 : rng());
+            }
         DepthStencilSurface b = a;
         DepthStencilState st;
         st.depth_enable = true;
         st.depth_write = rng() % 4 != 0;
         st.depth_func = funcs[rng() % std::size(funcs)];
+        const bool clockwise = rng() % 2 != 0;
+        if (trial % 2 == 1) {
+            const StencilOp ops[] = {StencilOp::Keep, StencilOp::Zero, StencilOp::Replace, StencilOp::IncrSat,
+                                     StencilOp::DecrSat, StencilOp::Invert, StencilOp::Incr, StencilOp::Decr};
+            st.stencil_enable = true;
+            st.depth_enable = rng() % 4 != 0;
+            st.two_sided = rng() % 2 != 0;
+            for (StencilFace* face : {&st.front, &st.back})
+                *face = StencilFace{ops[rng() % 8], ops[rng() % 8], ops[rng() % 8], funcs[rng() % std::size(funcs)]};
+            st.ref = rng() % 2 ? rng() % 4 : rng();
+            st.mask = rng() % 2 ? 0xFFFFFFFFu : rng();
+            st.write_mask = rng() % 2 ? 0xFFFFFFFFu : rng();
+        }
         Lanes x{}, y{};
         Depths d{};
         for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
@@ -339,12 +357,14 @@ TEST(DepthStencil, SixteenLanePathMatchesTheLaneByLaneLoop) {
             }
         }
         const auto live = static_cast<emu::LaneMask>(rng() & 0xFFFF);
-        const emu::LaneMask vector = depth_stencil_test(st, &a, x, y, d, live, true, false);
-        const emu::LaneMask reference = depth_stencil_test(st, &b, x, y, d, live, true, true);
+        const emu::LaneMask vector = depth_stencil_test(st, &a, x, y, d, live, clockwise, false);
+        const emu::LaneMask reference = depth_stencil_test(st, &b, x, y, d, live, clockwise, true);
         ASSERT_EQ(vector, reference) << "trial " << trial;
         for (uint32_t py = 0; py < 9; ++py)
-            for (uint32_t px = 0; px < 12; ++px)
+            for (uint32_t px = 0; px < 12; ++px) {
                 ASSERT_EQ(a.stored_depth(px, py), b.stored_depth(px, py)) << "trial " << trial << " at " << px << "," << py;
+                ASSERT_EQ(a.stencil(px, py), b.stencil(px, py)) << "trial " << trial << " at " << px << "," << py;
+            }
         for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
             if (!(live >> l & 1u)) continue;
             if (reference >> l & 1u) ++passed_lanes;

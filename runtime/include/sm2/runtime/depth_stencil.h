@@ -56,6 +56,8 @@ public:
     // The stored depth values, row by row (width() a row): the test's 16-lane path reads and
     // writes them directly.
     [[nodiscard]] uint32_t* depth_data() { return depth_.data(); }
+    // The stored stencil values, one byte a pixel, laid out as depth_data().
+    [[nodiscard]] uint8_t* stencil_data() { return stencil_.data(); }
     // Clear(D3DCLEAR_ZBUFFER / D3DCLEAR_STENCIL) inside `rect` (clipped to the surface).
     void clear(const PixelRect& rect, bool depth, float z, bool stencil, uint32_t s);
 
@@ -111,9 +113,10 @@ struct DepthStencilState {
 // pixel batch at (x[l], y[l]) with incoming depth depth[l] (bias applied, or oDepth; clamped to
 // [0, 1] here). Writes depth (when enabled and passed) and stencil; returns the lanes that
 // passed both tests. No surface: every live lane passes. Lanes outside the surface fail.
-// A depth test without stencil on an integer depth of at most 24 bits or a float depth, with
-// the lanes at distinct pixels, runs 16 lanes at once in AVX-512 where the CPU has it, with the
-// same results as the lane-by-lane loop, which `per_lane` forces (DeviceOptions::reference_paths).
+// On an integer depth of at most 24 bits or a float depth, with the lanes in quad order at
+// distinct pixels, the test runs 16 lanes at once (AVX-512 or AVX2, depth_stencil_block.inc),
+// with the same results as the lane-by-lane loop, which `per_lane` forces
+// (DeviceOptions::reference_paths).
 [[nodiscard]] emu::LaneMask depth_stencil_test(const DepthStencilState& state,
                                                DepthStencilSurface* surface,
                                                const std::array<int32_t, emu::kBatchLanes>& x,
