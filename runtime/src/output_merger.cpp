@@ -444,8 +444,8 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
     const bool block = avx512_block || cpu_has_avx2();
     if (lanes.quad_count * 4 < kLanes) live &= (emu::LaneMask{1} << (lanes.quad_count * 4)) - 1;
 
-    // Depth of each lane: oDepth (no bias) or the interpolated, biased depth, saturated. Read
-    // by fog alone: the depth test clamps (quantize_depth()) as saturate does.
+    // Depth of each lane: oDepth (no bias) or the interpolated, biased depth. The depth test
+    // clamps it to [0, 1] (quantize_depth()) as saturate does; fog reads a saturated copy.
     const std::array<float, kLanes>& unclamped_depth = in.shader_depth ? batch.depth()[0] : lanes.depth;
 
     // oC0 after fog (§7 step 2): the batch's register itself where there is no fog.
