@@ -210,6 +210,9 @@ struct TextureSampler::BlockLevels {
     const std::byte* anchor = nullptr;
     bool offsets32 = false;
     unsigned texel_bytes = 4;  // 1, 2 (narrow texels), 4 or 8 (two words)
+    // texel_bytes where the level is 2D (not a volume, not a cube face) with 4- or 8-byte
+    // texels, else 0: the filter's instance for that layout (block_filter_level's FlatBytes).
+    unsigned flat_bytes = 0;
     Context context;
     BlockFormat format;  // how texels decode (looked up once per prepare(), not per lookup)
     // Every channel a UNORM field wider than 5 bits (A16B16G16R16; A8R8G8B8 under float
@@ -789,6 +792,7 @@ bool block_supported(const Context& c, BlockLevels& levels) {
         if (c.fixed && !c.srgb && ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 0xFFu) levels.exact_channels |= 1u << k;
     }
     levels.texel_bytes = c.bpp;
+    levels.flat_bytes = !c.volume && !c.cube && (c.bpp == 4 || c.bpp == 8) ? c.bpp : 0;
     if (c.texture->levels() > BlockLevels::kMax || (c.bpp != 8 && c.bpp != 4 && c.bpp != 2 && c.bpp != 1)) return false;
     if (!cpu_has_avx512() && !cpu_has_avx2()) return false;
     bool all_pow2 = true;
