@@ -147,6 +147,14 @@
 #undef _mm512_maskz_loadu_epi32
 #undef _mm512_setr_epi64
 #undef _mm512_mask_cmpge_epi64_mask
+#undef _mm512_shuffle_epi8
+#undef _mm512_shuffle_epi32
+#undef _mm512_madd_epi16
+#undef _mm512_unpacklo_epi32
+#undef _mm512_unpackhi_epi32
+#undef _mm512_unpacklo_epi64
+#undef _mm512_unpackhi_epi64
+#undef _mm512_permutexvar_epi64
 
 namespace sm2::runtime::avx2 {
 
@@ -353,6 +361,42 @@ SM2_AVX2_INLINE Ints512 _mm512_srli_epi64(Ints512 a, unsigned count) {
 }
 SM2_AVX2_INLINE Ints512 _mm512_srlv_epi32(Ints512 a, Ints512 count) {
     return {_mm256_srlv_epi32(a.lo, count.lo), _mm256_srlv_epi32(a.hi, count.hi)};
+}
+
+// Within each 128-bit block, as in AVX-512: the byte shuffle (an index byte with bit 7 set gives
+// 0), the 16-bit multiply-adds of adjacent pairs, the interleaves, the 32-bit shuffle.
+SM2_AVX2_INLINE Ints512 _mm512_shuffle_epi8(Ints512 a, Ints512 idx) {
+    return {_mm256_shuffle_epi8(a.lo, idx.lo), _mm256_shuffle_epi8(a.hi, idx.hi)};
+}
+SM2_AVX2_INLINE Ints512 _mm512_madd_epi16(Ints512 a, Ints512 b) {
+    return {_mm256_madd_epi16(a.lo, b.lo), _mm256_madd_epi16(a.hi, b.hi)};
+}
+SM2_AVX2_INLINE Ints512 _mm512_unpacklo_epi32(Ints512 a, Ints512 b) {
+    return {_mm256_unpacklo_epi32(a.lo, b.lo), _mm256_unpacklo_epi32(a.hi, b.hi)};
+}
+SM2_AVX2_INLINE Ints512 _mm512_unpackhi_epi32(Ints512 a, Ints512 b) {
+    return {_mm256_unpackhi_epi32(a.lo, b.lo), _mm256_unpackhi_epi32(a.hi, b.hi)};
+}
+SM2_AVX2_INLINE Ints512 _mm512_unpacklo_epi64(Ints512 a, Ints512 b) {
+    return {_mm256_unpacklo_epi64(a.lo, b.lo), _mm256_unpacklo_epi64(a.hi, b.hi)};
+}
+SM2_AVX2_INLINE Ints512 _mm512_unpackhi_epi64(Ints512 a, Ints512 b) {
+    return {_mm256_unpackhi_epi64(a.lo, b.lo), _mm256_unpackhi_epi64(a.hi, b.hi)};
+}
+// (Broadcasts of one element of each block by their immediates, which an inlined call with a
+// constant `order` folds to; any other order by VPERMILPS's per-lane control.)
+SM2_AVX2_INLINE Ints512 _mm512_shuffle_epi32(Ints512 a, _MM_PERM_ENUM order) {
+    switch (order) {
+    case _MM_PERM_AAAA: return {_mm256_shuffle_epi32(a.lo, 0x00), _mm256_shuffle_epi32(a.hi, 0x00)};
+    case _MM_PERM_BBBB: return {_mm256_shuffle_epi32(a.lo, 0x55), _mm256_shuffle_epi32(a.hi, 0x55)};
+    case _MM_PERM_CCCC: return {_mm256_shuffle_epi32(a.lo, 0xAA), _mm256_shuffle_epi32(a.hi, 0xAA)};
+    case _MM_PERM_DDDD: return {_mm256_shuffle_epi32(a.lo, 0xFF), _mm256_shuffle_epi32(a.hi, 0xFF)};
+    default: break;
+    }
+    const int m = static_cast<int>(order);
+    const __m256i control = _mm256_setr_epi32(m & 3, m >> 2 & 3, m >> 4 & 3, m >> 6 & 3, m & 3, m >> 2 & 3, m >> 4 & 3, m >> 6 & 3);
+    return {_mm256_castps_si256(_mm256_permutevar_ps(_mm256_castsi256_ps(a.lo), control)),
+            _mm256_castps_si256(_mm256_permutevar_ps(_mm256_castsi256_ps(a.hi), control))};
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -646,6 +690,19 @@ SM2_AVX2_INLINE Ints512 _mm512_maskz_permutex2var_epi32(__mmask16 k, Ints512 a, 
 SM2_AVX2_INLINE Ints512 _mm512_alignr_epi32(Ints512 a, Ints512 b, int shift) {
     const Ints512 lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
     return _mm512_permutex2var_epi32(b, _mm512_add_epi32(lane, _mm512_set1_epi32(shift & 15)), a);
+}
+// 64-bit lanes: lane idx & 7 of a's 8, as the 32-bit lanes 2j, 2j + 1.
+// (The 32-bit indices 2j and 2j + 1 by 64-bit shifts, which the compiler folds for a constant
+// `idx`, leaving two VPERMDs and a blend a half.)
+SM2_AVX2_INLINE Ints512 _mm512_permutexvar_epi64(Ints512 idx, Ints512 a) {
+    Ints512 dwords;
+    for (int half = 0; half < 2; ++half) {
+        const __m256i j = _mm256_and_si256(half ? idx.hi : idx.lo, _mm256_set1_epi64x(7));
+        const __m256i lane = _mm256_or_si256(_mm256_or_si256(_mm256_slli_epi64(j, 1), _mm256_slli_epi64(j, 33)),
+                                             _mm256_set1_epi64x(1LL << 32));
+        (half ? dwords.hi : dwords.lo) = pick16(a.lo, a.hi, lane);
+    }
+    return dwords;
 }
 // 64-bit lanes: lane idx & 15 of the 16 lanes of {a, b}, as the 32-bit lanes 2j, 2j + 1.
 SM2_AVX2_INLINE Ints512 _mm512_permutex2var_epi64(Ints512 a, Ints512 idx, Ints512 b) {

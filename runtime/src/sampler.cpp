@@ -229,6 +229,12 @@ struct TextureSampler::BlockLevels {
     // Bit k: the filter sums channel k exactly (exact_bilinear()): fixed8 weights on a UNORM
     // field of at most 8 bits, not sRGB-decoded. Set once here, not tested per lookup.
     unsigned exact_channels = 0;
+    // For 4-byte texels of 8-bit fields summed exactly (block_exact_pairs()): the byte shuffles
+    // that widen a lane's two texels of a row (one 64-bit word: the first texel in its low 4
+    // bytes) into 16-bit pairs (first, second), channel k's pair in 32-bit word k of the lane's
+    // 128-bit block; `pair_shuffle` reads the 64-bit word in bytes 0-7 of each block,
+    // `pair_shuffle + 64` the one in bytes 8-15. A channel without an exact sum gives (0, 0).
+    alignas(64) std::array<uint8_t, 128> pair_shuffle{};
     // Which instance of the kernels runs: AVX-512's, or AVX2's (sampler_block.inc).
     bool avx512 = true;
 };
@@ -791,6 +797,18 @@ bool block_supported(const Context& c, BlockLevels& levels) {
         const BlockChannel& ch = (*format)[k];
         if (c.fixed && !c.srgb && ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 0xFFu) levels.exact_channels |= 1u << k;
     }
+    levels.pair_shuffle.fill(0x80);  // (an index with bit 7 set gives a 0 byte)
+    if (levels.bytes)
+        for (unsigned k = 0; k < 4; ++k) {
+            if (!(levels.exact_channels >> k & 1u)) continue;
+            const auto byte = static_cast<uint8_t>((*format)[k].shift / 8);
+            for (unsigned block = 0; block < 4; ++block)
+                for (unsigned word = 0; word < 2; ++word) {
+                    const unsigned at = 64 * word + 16 * block + 4 * k;
+                    levels.pair_shuffle[at] = static_cast<uint8_t>(8 * word + byte);          // the first texel's
+                    levels.pair_shuffle[at + 2] = static_cast<uint8_t>(8 * word + 4 + byte);  // the second's
+                }
+        }
     levels.texel_bytes = c.bpp;
     levels.flat_bytes = !c.volume && !c.cube && (c.bpp == 4 || c.bpp == 8) ? c.bpp : 0;
     if (c.texture->levels() > BlockLevels::kMax || (c.bpp != 8 && c.bpp != 4 && c.bpp != 2 && c.bpp != 1)) return false;

@@ -10,7 +10,7 @@
 
 // Functions marked SM2_AVX512 run only where cpu_has_avx512() holds, SM2_AVX2 ones where
 // cpu_has_avx2() does.
-#define SM2_AVX512 __attribute__((target("avx512f,avx512dq,avx512vl")))
+#define SM2_AVX512 __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw")))
 #define SM2_AVX2 __attribute__((target("avx2,fma")))
 
 // GCC 12's AVX-512 headers trip -Wuninitialized on their own _mm512_undefined_*() self-init:
@@ -32,7 +32,7 @@ namespace sm2::runtime {
 // interpolation); asked once.
 inline bool cpu_has_avx512() {
     static const bool has = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-                            __builtin_cpu_supports("avx512vl");
+                            __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw");
     return has;
 }
 
