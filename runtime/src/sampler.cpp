@@ -235,6 +235,9 @@ struct TextureSampler::BlockLevels {
     // 128-bit block; `pair_shuffle` reads the 64-bit word in bytes 0-7 of each block,
     // `pair_shuffle + 64` the one in bytes 8-15. A channel without an exact sum gives (0, 0).
     alignas(64) std::array<uint8_t, 128> pair_shuffle{};
+    // block_filter_level()'s instance for these levels in the instance set that `avx512` names
+    // (block_filter_for(), sampler_block.inc), chosen once here.
+    void (*filter)() = nullptr;
     // Which instance of the kernels runs: AVX-512's, or AVX2's (sampler_block.inc).
     bool avx512 = true;
 };
@@ -907,6 +910,7 @@ std::shared_ptr<const TextureSampler::BlockLevels> TextureSampler::block_levels_
     if (!block_supported(make_context(*s.texture, s.state, precision_), *levels)) return nullptr;
     if (block_64bit_addresses_) levels->offsets32 = false;
     levels->avx512 = cpu_has_avx512() && !block_avx2_;
+    levels->filter = levels->avx512 ? avx512::block_filter_for(*levels) : avx2::block_filter_for(*levels);
     return levels;
 }
 
