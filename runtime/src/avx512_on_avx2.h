@@ -691,29 +691,19 @@ SM2_AVX2_INLINE Ints512 _mm512_alignr_epi32(Ints512 a, Ints512 b, int shift) {
     const Ints512 lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
     return _mm512_permutex2var_epi32(b, _mm512_add_epi32(lane, _mm512_set1_epi32(shift & 15)), a);
 }
-// 64-bit lanes: lane idx & 7 of a's 8, as the 32-bit lanes 2j, 2j + 1.
-// (The 32-bit indices 2j and 2j + 1 by 64-bit shifts, which the compiler folds for a constant
-// `idx`, leaving two VPERMDs and a blend a half.)
-SM2_AVX2_INLINE Ints512 _mm512_permutexvar_epi64(Ints512 idx, Ints512 a) {
-    Ints512 dwords;
-    for (int half = 0; half < 2; ++half) {
-        const __m256i j = _mm256_and_si256(half ? idx.hi : idx.lo, _mm256_set1_epi64x(7));
-        const __m256i lane = _mm256_or_si256(_mm256_or_si256(_mm256_slli_epi64(j, 1), _mm256_slli_epi64(j, 33)),
-                                             _mm256_set1_epi64x(1LL << 32));
-        (half ? dwords.hi : dwords.lo) = pick16(a.lo, a.hi, lane);
-    }
-    return dwords;
+// The 32-bit lanes 2j and 2j + 1 of each 64-bit lane index j (`lanes`: j's mask, 7 or 15), by
+// 64-bit shifts, which the compiler folds for a constant index (it does not fold VPERMD).
+SM2_AVX2_INLINE __m256i dword_pairs(__m256i j, long long lanes) {
+    j = _mm256_and_si256(j, _mm256_set1_epi64x(lanes));
+    return _mm256_or_si256(_mm256_or_si256(_mm256_slli_epi64(j, 1), _mm256_slli_epi64(j, 33)), _mm256_set1_epi64x(1LL << 32));
 }
-// 64-bit lanes: lane idx & 15 of the 16 lanes of {a, b}, as the 32-bit lanes 2j, 2j + 1.
+// 64-bit lanes: lane idx & 7 of a's 8.
+SM2_AVX2_INLINE Ints512 _mm512_permutexvar_epi64(Ints512 idx, Ints512 a) {
+    return {pick16(a.lo, a.hi, dword_pairs(idx.lo, 7)), pick16(a.lo, a.hi, dword_pairs(idx.hi, 7))};
+}
+// 64-bit lanes: lane idx & 15 of the 16 lanes of {a, b}.
 SM2_AVX2_INLINE Ints512 _mm512_permutex2var_epi64(Ints512 a, Ints512 idx, Ints512 b) {
-    const __m256i pairs = _mm256_setr_epi32(0, 0, 2, 2, 4, 4, 6, 6), odd = _mm256_setr_epi32(0, 1, 0, 1, 0, 1, 0, 1);
-    Ints512 dwords;
-    for (int half = 0; half < 2; ++half) {
-        const __m256i j = _mm256_and_si256(half ? idx.hi : idx.lo, _mm256_set1_epi64x(15));
-        const __m256i lane = _mm256_add_epi32(_mm256_slli_epi32(_mm256_permutevar8x32_epi32(j, pairs), 1), odd);
-        (half ? dwords.hi : dwords.lo) = pick32(a, b, lane);
-    }
-    return dwords;
+    return {pick32(a, b, dword_pairs(idx.lo, 15)), pick32(a, b, dword_pairs(idx.hi, 15))};
 }
 
 // ---------------------------------------------------------------------------------------------
