@@ -143,11 +143,13 @@ inline bool pow_float_integer(const std::array<float, N>& base, unsigned n, std:
         square[l] = std::fabs(static_cast<double>(base[l]));
         product[l] = 1.0;
     }
-    for (unsigned m = n;;) {
-        if (m & 1u)
+    // The bits of n (at most 9) in a loop of fixed length, unrolled: where n is a constant (the
+    // JIT's compiled shaders), the tests of its bits fold and no loop is left.
+#pragma GCC unroll 9
+    for (unsigned bit = 0; bit < 9; ++bit) {
+        if (n >> bit & 1u)
             for (size_t l = 0; l < N; ++l) product[l] *= square[l];
-        m >>= 1;
-        if (m == 0) break;
+        if (n >> bit <= 1u) break;
         for (size_t l = 0; l < N; ++l) square[l] *= square[l];
     }
     bool certain = true;
