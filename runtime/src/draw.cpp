@@ -182,6 +182,7 @@ struct PixelPipeline {
     OutputMergerState merger{};
     RenderTargets targets{};
     MergeInput merge_template{};
+    MergePlan merge_plan{};  // merge_plan(merger, targets, merge_template)
     bool early_depth_stencil = false;
     bool reference_paths = false;  // DeviceOptions::reference_paths: the portable interpolation
     const TextureSampler* sampler = nullptr;
@@ -248,8 +249,7 @@ void shade_quads(const PixelPipeline& pipe, const PrimitiveSetup& prim, std::spa
     w.pixels_killed += lanes_in(live & w.batch.killed);
     observer.shaded(w.batch, live);
     input.live = live;
-    RenderTargets targets = pipe.targets;
-    const emu::LaneMask written = merge(pipe.merger, targets, input);
+    const emu::LaneMask written = merge(pipe.merger, pipe.targets, input, pipe.merge_plan);
     observer.merged(written);
     w.pixels_written += lanes_in(written);
 }
@@ -807,6 +807,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
         if (written[slot::kRenderTargetFirst + i]) pipe.merge_template.color_outputs |= static_cast<uint8_t>(1u << i);
     pipe.merge_template.shader_depth = written[slot::kDepth] != 0;
     pipe.merge_template.generic_path = options_.reference_paths;
+    pipe.merge_plan = merge_plan(merger, targets, pipe.merge_template);
     pipe.reference_paths = options_.reference_paths;
     const bool kills = ps_object.texkill;
     pipe.early_depth_stencil = merger.depth_stencil.active() && !pipe.merge_template.shader_depth && !kills &&

@@ -452,16 +452,54 @@ Vec4 blend(const BlendState& b, const Vec4& src_in, const Vec4& dst, bool fixed_
     return r;
 }
 
+MergePlan merge_plan(const OutputMergerState& s, const RenderTargets& targets, const MergeInput& in) {
+    MergePlan plan;
+    // The 16-lane kernels' instance this CPU runs (output_merger_block.inc), if any.
+    plan.avx512_block = cpu_has_avx512() && !in.block_avx2;
+    plan.block = plan.avx512_block || cpu_has_avx2();
+    plan.alpha_clamps = !(targets.color[0] && is_float_target(targets.color[0]->format()));
+    for (unsigned t = 0; t < kMaxRenderTargets; ++t) {
+        const Surface* surface = targets.color[t];
+        TargetPlan& target = plan.targets[t];
+        // A target the shader does not write keeps its contents; an oC# without a target is dropped.
+        if (!surface || !(in.color_outputs >> t & 1u)) continue;
+        target.mask = s.write_mask[t] & 0xFu;
+        if (target.mask == 0) continue;
+        const FormatInfo* info = format_info(surface->format());
+        if (!info || !info->render_target || surface->depth() != 1) continue;  // not a target
+        target.info = info;
+        target.fixed = !is_float_target(surface->format());
+        target.srgb = t == 0 && s.srgb_write && info->srgb;
+        target.path = TargetPath::PerPixel;
+        if (target.srgb || in.generic_path) continue;
+        // (32-bit offsets in the 16-lane kernels.)
+        const bool block = plan.block && surface->bytes().size() <= size_t{INT32_MAX};
+        const Unorm8Texel& unorm = unorm8_texel(*info);
+        if (unorm.wide && block) {
+            target.path = unorm.words == 2 ? TargetPath::Unorm8Block8 : TargetPath::Unorm8Block;
+            target.bytes = unorm.valid;
+        } else if (unorm.valid) {
+            target.path = TargetPath::Unorm8Lanes;
+        } else if (!s.blend.enable && float_texel(*info).valid) {
+            target.path = block ? TargetPath::FloatBlock : TargetPath::FloatLanes;
+        }
+    }
+    return plan;
+}
+
+emu::LaneMask merge(const OutputMergerState& s, const RenderTargets& targets, const MergeInput& in) {
+    return merge(s, targets, in, merge_plan(s, targets, in));
+}
+
 // (Not target_clones, unlike the internal functions above: clang 14 does not multiversion a
 // function whose header declaration lacks the attribute; it compiled this one for x86-64-v4
 // alone, an illegal instruction on CPUs without AVX-512.)
-emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const MergeInput& in) {
+emu::LaneMask merge(const OutputMergerState& s, const RenderTargets& targets, const MergeInput& in,
+                    const MergePlan& plan) {
     const emu::Batch& batch = *in.batch;
     const PixelLanes& lanes = *in.lanes;
     emu::LaneMask live = in.live & ~batch.killed;
-    // The 16-lane kernels' instance this CPU runs (output_merger_block.inc), if any.
-    const bool avx512_block = cpu_has_avx512() && !in.block_avx2;
-    const bool block = avx512_block || cpu_has_avx2();
+    const bool avx512_block = plan.avx512_block;
     if (lanes.quad_count * 4 < kLanes) live &= (emu::LaneMask{1} << (lanes.quad_count * 4)) - 1;
 
     // Depth of each lane: oDepth (no bias) or the interpolated, biased depth. The depth test
@@ -487,9 +525,8 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
     // Alpha test (§10): failing pixels never reach the stencil stage. The alpha is clamped only
     // where render target 0 clamps: a float target tests what the shader wrote.
     if (s.alpha_test) {
-        const bool clamps = !(targets.color[0] && is_float_target(targets.color[0]->format()));
         for (unsigned l = 0; l < kLanes; ++l)
-            if ((live >> l & 1u) && !alpha_test_passes(s, color0[3][l], clamps)) live &= ~(emu::LaneMask{1} << l);
+            if ((live >> l & 1u) && !alpha_test_passes(s, color0[3][l], plan.alpha_clamps)) live &= ~(emu::LaneMask{1} << l);
     }
     // Stencil, depth, stencil update (§11).
     if (!in.depth_stencil_done)
@@ -497,21 +534,17 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
                                   lanes.clockwise, in.generic_path);
 
     for (unsigned t = 0; t < kMaxRenderTargets; ++t) {
-        Surface* surface = targets.color[t];
-        // A target the shader does not write keeps its contents; an oC# without a target is dropped.
-        if (!surface || !(in.color_outputs >> t & 1u)) continue;
-        const uint32_t mask = s.write_mask[t] & 0xFu;
-        if (mask == 0) continue;
-        const FormatInfo* info = format_info(surface->format());
-        if (!info || !info->render_target || surface->depth() != 1) continue;  // not a target
-        const bool fixed = !is_float_target(surface->format());
-        const bool srgb = t == 0 && s.srgb_write && info->srgb;
+        const TargetPlan& target = plan.targets[t];
+        if (target.path == TargetPath::Skip) continue;
+        Surface* const surface = targets.color[t];
+        const uint32_t mask = target.mask;
+        const bool fixed = target.fixed, srgb = target.srgb;
         // The live lanes inside the surface, and a key per lane that differs between pixels (one
         // vectorized loop: no branches).
         emu::LaneMask write = 0;
         bool distinct = false;
         const uint32_t width = surface->width(), height = surface->height();
-        if (block) {
+        if (plan.block) {
             const LanePlaces places = avx512_block ? avx512::lane_places_block(lanes, live, width, height)
                                                    : avx2::lane_places_block(lanes, live, width, height);
             write = places.write;
@@ -532,50 +565,51 @@ emu::LaneMask merge(const OutputMergerState& s, RenderTargets& targets, const Me
         if (!write) continue;
         const ShaderColor& src = t == 0 ? color0 : batch.render_target(t);
 
-        if (!srgb && !in.generic_path) {
-            const Unorm8Texel& fmt = unorm8_texel(*info);
-            const bool wide_block = fmt.wide && block && surface->bytes().size() <= size_t{INT32_MAX};
-            if ((fmt.valid || wide_block) && distinct) {
-                if (wide_block) {
-                    // Side by side in one quad row (see kRowLane), all 16 pixels inside the surface?
-                    bool run = lanes.quad_count == 4 && lanes.x[0] >= 0 && lanes.y[0] >= 0 &&
-                               static_cast<uint32_t>(lanes.x[0]) + 8 <= width &&
-                               static_cast<uint32_t>(lanes.y[0]) + 2 <= height;
-                    for (unsigned q = 1; q < 4; ++q)
-                        run = run && lanes.x[4 * q] == lanes.x[0] + static_cast<int32_t>(2 * q) && lanes.y[4 * q] == lanes.y[0];
-                    const auto run_kernel = [&](auto kernel) { kernel(s.blend, fmt, *surface, mask, src, lanes, run, write); };
-                    if (fmt.words == 2) avx512_block ? run_kernel(avx512::merge_unorm8_block<2, false>) : run_kernel(avx2::merge_unorm8_block<2, false>);
-                    else if (fmt.valid) avx512_block ? run_kernel(avx512::merge_unorm8_block<1, true>) : run_kernel(avx2::merge_unorm8_block<1, true>);
-                    else avx512_block ? run_kernel(avx512::merge_unorm8_block<1, false>) : run_kernel(avx2::merge_unorm8_block<1, false>);
-                    continue;
-                }
-                std::array<size_t, kLanes> offset;  // used for the lanes in `write` only
-                for (unsigned l = 0; l < kLanes; ++l)
-                    offset[l] = static_cast<size_t>(lanes.y[l]) * surface->row_pitch() +
-                                static_cast<size_t>(lanes.x[l]) * 4;
-                merge_unorm8(s.blend, fmt, *surface, mask, src, offset, write);
-                continue;
-            }
+        // The 8-bit paths blend the batch's texels at once: a pixel two lanes write (not
+        // `distinct`) goes pixel by pixel, where the later lane blends onto the earlier one.
+        TargetPath path = target.path;
+        if (!distinct && (path == TargetPath::Unorm8Block || path == TargetPath::Unorm8Block8 || path == TargetPath::Unorm8Lanes))
+            path = TargetPath::PerPixel;
+        switch (path) {
+        case TargetPath::Unorm8Block:
+        case TargetPath::Unorm8Block8: {
+            const Unorm8Texel& fmt = unorm8_texel(*target.info);
+            // Side by side in one quad row (see kRowLane), all 16 pixels inside the surface?
+            bool run = lanes.quad_count == 4 && lanes.x[0] >= 0 && lanes.y[0] >= 0 &&
+                       static_cast<uint32_t>(lanes.x[0]) + 8 <= width && static_cast<uint32_t>(lanes.y[0]) + 2 <= height;
+            for (unsigned q = 1; q < 4; ++q)
+                run = run && lanes.x[4 * q] == lanes.x[0] + static_cast<int32_t>(2 * q) && lanes.y[4 * q] == lanes.y[0];
+            const auto run_kernel = [&](auto kernel) { kernel(s.blend, fmt, *surface, mask, src, lanes, run, write); };
+            if (path == TargetPath::Unorm8Block8) avx512_block ? run_kernel(avx512::merge_unorm8_block<2, false>) : run_kernel(avx2::merge_unorm8_block<2, false>);
+            else if (target.bytes) avx512_block ? run_kernel(avx512::merge_unorm8_block<1, true>) : run_kernel(avx2::merge_unorm8_block<1, true>);
+            else avx512_block ? run_kernel(avx512::merge_unorm8_block<1, false>) : run_kernel(avx2::merge_unorm8_block<1, false>);
+            continue;
         }
-
-        if (!srgb && !in.generic_path && !s.blend.enable) {
-            const FloatTexel& fmt = float_texel(*info);
-            if (fmt.valid) {
-                if (block && surface->bytes().size() <= size_t{INT32_MAX}) {
-                    if (avx512_block) avx512::copy_float_block(fmt, *surface, mask, src, lanes, write);
-                    else avx2::copy_float_block(fmt, *surface, mask, src, lanes, write);
-                    continue;
-                }
-                std::byte* const bytes = surface->bytes().data();
-                for (unsigned l = 0; l < kLanes; ++l) {
-                    if (!(write >> l & 1u)) continue;  // lane order: a repeated pixel keeps the later lane
-                    std::byte* const texel = bytes + static_cast<size_t>(lanes.y[l]) * surface->row_pitch() +
-                                             static_cast<size_t>(lanes.x[l]) * fmt.bytes;
-                    for (unsigned c = 0; c < 4; ++c)
-                        if (fmt.offset[c] >= 0 && (mask >> c & 1u)) std::memcpy(texel + fmt.offset[c], &src[c][l], 4);
-                }
-                continue;
+        case TargetPath::Unorm8Lanes: {
+            std::array<size_t, kLanes> offset;  // used for the lanes in `write` only
+            for (unsigned l = 0; l < kLanes; ++l)
+                offset[l] = static_cast<size_t>(lanes.y[l]) * surface->row_pitch() + static_cast<size_t>(lanes.x[l]) * 4;
+            merge_unorm8(s.blend, unorm8_texel(*target.info), *surface, mask, src, offset, write);
+            continue;
+        }
+        case TargetPath::FloatBlock:
+            if (avx512_block) avx512::copy_float_block(float_texel(*target.info), *surface, mask, src, lanes, write);
+            else avx2::copy_float_block(float_texel(*target.info), *surface, mask, src, lanes, write);
+            continue;
+        case TargetPath::FloatLanes: {
+            const FloatTexel& fmt = float_texel(*target.info);
+            std::byte* const bytes = surface->bytes().data();
+            for (unsigned l = 0; l < kLanes; ++l) {
+                if (!(write >> l & 1u)) continue;  // lane order: a repeated pixel keeps the later lane
+                std::byte* const texel = bytes + static_cast<size_t>(lanes.y[l]) * surface->row_pitch() +
+                                         static_cast<size_t>(lanes.x[l]) * fmt.bytes;
+                for (unsigned c = 0; c < 4; ++c)
+                    if (fmt.offset[c] >= 0 && (mask >> c & 1u)) std::memcpy(texel + fmt.offset[c], &src[c][l], 4);
             }
+            continue;
+        }
+        case TargetPath::Skip:
+        case TargetPath::PerPixel: break;
         }
 
         // Every other target: one pixel at a time through the surface's texel conversions.

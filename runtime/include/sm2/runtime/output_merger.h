@@ -81,10 +81,44 @@ struct MergeInput {
     // Tests only: the 16-lane kernels' AVX2 instance even on a CPU with AVX-512.
     bool block_avx2 = false;
 };
+
+// How merge() stores into one render target: what depends on the state, the target and the
+// shader's outputs alone, chosen once per draw by merge_plan() instead of once per batch.
+enum class TargetPath : uint8_t {
+    Skip,          // no target, not written by the shader, write mask 0, or not a target
+    Unorm8Block,   // UNORM fields in 4-byte texels (8-bit ones: `bytes`), the 16-lane kernels
+    Unorm8Block8,  // UNORM fields in 8-byte texels (A16B16G16R16), the 16-lane kernels
+    Unorm8Lanes,   // 8-bit fields in 4-byte texels, without the 16-lane kernels
+    FloatBlock,    // 32-bit float channels without blending, copied by the 16-lane kernels
+    FloatLanes,    // the same copy, lane by lane
+    PerPixel,      // every other target: Surface::read/write pixel by pixel
+};
+struct TargetPlan {
+    TargetPath path = TargetPath::Skip;
+    bool bytes = false;  // Unorm8Block: every field 8 bits
+    bool fixed = true;   // not a float target: blending clamps
+    bool srgb = false;   // sRGB write (target 0 only)
+    uint32_t mask = 0;   // the colour write mask
+    const FormatInfo* info = nullptr;
+};
+struct MergePlan {
+    std::array<TargetPlan, kMaxRenderTargets> targets{};
+    bool avx512_block = false;  // the 16-lane kernels' instance: AVX-512, else AVX2 (where `block`)
+    bool block = false;
+    bool alpha_clamps = true;   // the alpha test clamps oC0.a (render target 0 is not a float target)
+};
+// The plan for `targets` under `state` and the shader outputs of `input` (color_outputs,
+// generic_path, block_avx2); the same plan serves every batch of a draw.
+[[nodiscard]] MergePlan merge_plan(const OutputMergerState& state, const RenderTargets& targets, const MergeInput& input);
+
 // Runs every per-pixel operation for the live lanes; returns the lanes that wrote colour.
 // Targets whose channels are each an 8-bit UNORM byte of a 4-byte texel (A8R8G8B8, X8R8G8B8,
 // A8B8G8R8, X8B8G8R8) without sRGB write are blended a whole batch at a time on the stored
 // bytes; every other target goes pixel by pixel through Surface::read/write. Same bytes either way.
-emu::LaneMask merge(const OutputMergerState& state, RenderTargets& targets, const MergeInput& input);
+// `plan`: merge_plan(state, targets, input), made once for the draw.
+emu::LaneMask merge(const OutputMergerState& state, const RenderTargets& targets, const MergeInput& input,
+                    const MergePlan& plan);
+// merge() with its plan made for this call (tests, single batches).
+emu::LaneMask merge(const OutputMergerState& state, const RenderTargets& targets, const MergeInput& input);
 
 }  // namespace sm2::runtime
