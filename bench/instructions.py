@@ -48,9 +48,15 @@ def per_function(out):
             total = n
             continue
         name = where.split(":", 1)[1] if ":" in where else where
+        obj = re.search(r" \[([^\]]*)\]$", name)
         name = re.sub(r" \[[^\]]*\]$", "", name).replace("(anonymous namespace)", "anon")
         name = name.split("(")[0]
-        counts["(JIT-compiled code)" if name.startswith("0x") else name] += n
+        if name.startswith("0x"):
+            # An address without a symbol: the JIT's code (no object file) or a stripped
+            # library's internals (libLLVM's, compiling that code).
+            library = obj.group(1) if obj else "???"
+            name = "(JIT-compiled code)" if library == "???" else f"({os.path.basename(library)}, no symbols)"
+        counts[name] += n
     return total, counts
 
 
