@@ -235,6 +235,12 @@ struct TextureSampler::BlockLevels {
     // 128-bit block; `pair_shuffle` reads the 64-bit word in bytes 0-7 of each block,
     // `pair_shuffle + 64` the one in bytes 8-15. A channel without an exact sum gives (0, 0).
     alignas(64) std::array<uint8_t, 128> pair_shuffle{};
+    // Channel k filters to what channel copy_of[k] filters to: an earlier channel decoded from
+    // the same field in the same way, with the same BORDERCOLOR channel and sRGB read (L8 and
+    // A8L8 give red, green and blue from one field). Only the channels of `filtered` (those with
+    // copy_of[k] = k) are filtered; block_lookup() copies the others.
+    std::array<uint8_t, 4> copy_of{0, 1, 2, 3};
+    unsigned filtered = 0xFu;
     // block_filter_level()'s instance for these levels in the instance set that `avx512` names
     // (block_filter_for(), sampler_block.inc), chosen once here.
     void (*filter)() = nullptr;
@@ -812,6 +818,23 @@ bool block_supported(const Context& c, BlockLevels& levels) {
                     levels.pair_shuffle[at + 2] = static_cast<uint8_t>(8 * word + 4 + byte);  // the second's
                 }
         }
+    const bool reads_border = std::find(std::begin(c.address), std::end(c.address), TextureAddress::Border) != std::end(c.address);
+    for (unsigned k = 1; k < 4; ++k) {
+        const BlockChannel& ch = (*format)[k];
+        if (ch.kind == BlockChannel::Kind::Zero || ch.kind == BlockChannel::Kind::One) continue;  // (no decode to share)
+        for (unsigned j = 0; j < k; ++j) {
+            const BlockChannel& earlier = (*format)[j];
+            const bool same_field = earlier.kind == ch.kind && earlier.high == ch.high && earlier.shift == ch.shift &&
+                                    earlier.bits == ch.bits && earlier.mask == ch.mask;
+            const bool same_border = !reads_border || std::bit_cast<uint32_t>(c.border[j]) == std::bit_cast<uint32_t>(c.border[k]);
+            const bool same_srgb = !c.srgb || (j < 3) == (k < 3);  // (sRGB reads colour channels only)
+            if (same_field && same_border && same_srgb) {
+                levels.copy_of[k] = static_cast<uint8_t>(j);
+                levels.filtered &= ~(1u << k);
+                break;
+            }
+        }
+    }
     levels.texel_bytes = c.bpp;
     levels.flat_bytes = !c.volume && !c.cube && (c.bpp == 4 || c.bpp == 8) ? c.bpp : 0;
     if (c.texture->levels() > BlockLevels::kMax || (c.bpp != 8 && c.bpp != 4 && c.bpp != 2 && c.bpp != 1)) return false;
