@@ -207,6 +207,74 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
 // exact value has at most 24 + 24 significant bits, so the double quotient is within 2^-53 of
 // it, far closer than the half ulp of float the check needs). Both paths, 8-, 5/6- and 4-bit
 // fields, random coordinates, CLAMP.
+// Fixed-mode levels of detail near every step of 1/256 in log2(rho), where the block path's short
+// series (block_fixed_lod()) must either settle floor(256 log2 rho) as lod_log2()'s series does
+// or hand the quad to that series: each quad's x derivative is the float nearest 2^(k / 256)
+// texels a pixel or one of its neighbours a few ulps away (t = 256 log2 rho steps 4.4e-5 an ulp,
+// and the short series' error reaches 5.5e-6), its y derivative half that, so the x length is
+// rho exactly. Trilinear on a texture of random levels: a fraction off by 1/256 changes the texels.
+TEST(SamplerBlockPath, TrilinearLevelsAtEveryLodStepMatchThePerLanePath) {
+    std::mt19937 rng(20261130);
+    const Texture texture = random_texture(rng, Format::A8R8G8B8, 256, 256, 0);
+    TextureSampler block, lanes;
+    block.set_texture(0, &texture);
+    lanes.set_texture(0, &texture);
+    lanes.set_block_path(false);
+    SamplerState state;
+    state.mag_filter = state.min_filter = state.mip_filter = TextureFilter::Linear;
+    for (TextureSampler* s : {&block, &lanes}) s->set_state(0, state);
+    block.prepare();
+    if (!block.block_path_applies(0)) GTEST_SKIP() << "no block path on this CPU";
+    unsigned compared = 0;
+    // Steps from rho = 1/4 to 2^9 (past the last level): k / 256 in log2, every third step, each
+    // quad of a batch a different ulp offset.
+    for (int k = -512; k <= 9 * 256; k += 3)
+        for (int first_offset = -6; first_offset <= 6; first_offset += 4) {
+            std::array<emu::FloatLanes, 4> coords{};
+            for (unsigned q = 0; q < emu::kBatchQuads; ++q) {
+                float du = static_cast<float>(std::exp2(k / 256.0) / 256.0);
+                for (int i = 0; i < first_offset + static_cast<int>(q); ++i) du = std::nextafter(du, 1.0f);
+                for (int i = 0; i > first_offset + static_cast<int>(q); --i) du = std::nextafter(du, 0.0f);
+                for (unsigned i = 0; i < 4; ++i) {
+                    // (u, v) = (0, 0) at the top-left lane: the differences are du and du / 2 exactly.
+                    coords[0][4 * q + i] = (i & 1u) ? du : 0.0f;
+                    coords[1][4 * q + i] = (i >> 1) ? du * 0.5f : 0.0f;
+                }
+            }
+            emu::TextureRequest r;
+            r.coordinates = &coords;
+            std::array<emu::FloatLanes, 4> a, b;
+            block.sample(r, a);
+            lanes.sample(r, b);
+            for (unsigned c = 0; c < 4; ++c)
+                for (unsigned l = 0; l < emu::kBatchLanes; ++l)
+                    ASSERT_EQ(std::bit_cast<uint32_t>(a[c][l]), std::bit_cast<uint32_t>(b[c][l]))
+                        << "step " << k << ", offset " << first_offset + static_cast<int>(l / 4) << " ulps, channel " << c
+                        << ", lane " << l;
+            ++compared;
+        }
+    // Diagonal derivatives (d, d) of powers of two: squares 2 d^2 that are odd powers of two, whose
+    // roots (rho = sqrt(2) d, log2 rho within rounding of an odd multiple of 1/2) only the series settles.
+    for (int n = 1; n <= 14; ++n) {
+        std::array<emu::FloatLanes, 4> coords{};
+        const float d = std::ldexp(1.0f, -n);
+        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+            coords[0][l] = (l & 1u) ? d : 0.0f;
+            coords[1][l] = (l & 1u) ? d : (l & 2u) ? d * 0.25f : 0.0f;
+        }
+        emu::TextureRequest r;
+        r.coordinates = &coords;
+        std::array<emu::FloatLanes, 4> a, b;
+        block.sample(r, a);
+        lanes.sample(r, b);
+        for (unsigned c = 0; c < 4; ++c)
+            for (unsigned l = 0; l < emu::kBatchLanes; ++l)
+                ASSERT_EQ(std::bit_cast<uint32_t>(a[c][l]), std::bit_cast<uint32_t>(b[c][l])) << "2^-" << n << ", lane " << l;
+        ++compared;
+    }
+    EXPECT_EQ(compared, 939u * 4u + 14u);
+}
+
 TEST(SamplerFilter, Fixed8BilinearOfNarrowUnormIsTheCorrectlyRoundedExactSum) {
     std::mt19937 rng(11);
     struct Field { Format format; unsigned channel, shift, bits; };
