@@ -951,11 +951,6 @@ bool TextureSampler::block_path_applies(unsigned stage) const { return block_lev
 
 void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::FloatLanes, 4>& texels) {
     const unsigned quads = std::min(request.quad_count, emu::kBatchQuads);
-    static constexpr emu::FloatLanes kZero{}, kOne = [] {
-        emu::FloatLanes one{};
-        one.fill(1.0f);
-        return one;
-    }();
     if (request.sampler < kStages && request.coordinates != nullptr) {
         if (!prepared_[request.sampler]) prepare_stage(request.sampler);
         const BlockLevels* levels_ptr = block_levels_[request.sampler].get();
@@ -965,6 +960,18 @@ void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::
             return avx2::block_sample(levels_ptr->context, *levels_ptr, request, quads, level_memo_[request.sampler], texels);
         }
     }
+    sample_lanes(request, quads, texels);
+}
+
+// (Out of line: inlined into sample(), its frame and saved registers cost every block lookup
+// about 30 instructions.)
+__attribute__((noinline)) void TextureSampler::sample_lanes(const emu::TextureRequest& request, unsigned quads,
+                                                            std::array<emu::FloatLanes, 4>& texels) const {
+    static constexpr emu::FloatLanes kZero{}, kOne = [] {
+        emu::FloatLanes one{};
+        one.fill(1.0f);
+        return one;
+    }();
     texels = {kZero, kZero, kZero, kOne};  // what lanes without a lookup read: (0, 0, 0, 1)
     if (request.sampler >= kStages || request.coordinates == nullptr) return;
     const Stage& s = stages_[request.sampler];

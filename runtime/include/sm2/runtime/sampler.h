@@ -155,6 +155,8 @@ private:
     std::array<BatchLevelMemo, kStages> level_memo_{};  // valid only while the stage stays prepared
     // The stage's block-path tables, or null where the block path does not apply.
     [[nodiscard]] std::shared_ptr<const BlockLevels> block_levels_for(unsigned stage) const;
+    // sample() for a request the block path does not take: lane by lane.
+    void sample_lanes(const emu::TextureRequest& request, unsigned quads, std::array<emu::FloatLanes, 4>& texels) const;
     void forget_prepared() {
         prepared_.fill(false);
     }
