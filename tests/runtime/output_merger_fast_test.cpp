@@ -257,21 +257,35 @@ TEST(OutputMergerFast, RandomBatchesMatchThePerPixelPath) {
     }
 }
 
-// Blending off, every channel written: the store's rounding for a sweep over [-0.5, 1.5] in
-// steps of 2^-18 and for the 64 floats either side of every rounding boundary (k + 0.5) / 255.
-TEST(OutputMergerFast, EncodeMatchesOverASweep) {
-    std::vector<float> values;
-    for (int i = -(1 << 17); i <= 3 << 17; ++i) values.push_back(static_cast<float>(i) / static_cast<float>(1 << 18));
-    for (int k = 0; k < 256; ++k) {
-        float up = (static_cast<float>(k) + 0.5f) / 255.0f, down = up;
-        for (int s = 0; s < 64; ++s) {
+// The floats within `ulps` either side of every rounding boundary (k + 0.5) / max of a field.
+void add_rounding_boundaries(std::vector<float>& values, int max, int ulps) {
+    for (int k = 0; k <= max; ++k) {
+        float up = (static_cast<float>(k) + 0.5f) / static_cast<float>(max), down = up;
+        for (int s = 0; s < ulps; ++s) {
             values.push_back(up);
             values.push_back(down);
             up = std::nextafter(up, 2.0f);
             down = std::nextafter(down, -2.0f);
         }
     }
-    for (const Format f : {Format::A8R8G8B8, Format::X8R8G8B8, Format::A8B8G8R8}) {
+}
+
+// Blending off, every channel written: the store's rounding (unorm8::encode_field() in float
+// against the per-pixel path's double) for a sweep over [-0.5, 1.5] in steps of 2^-18 and for
+// the floats either side of every rounding boundary (k + 0.5) / max of 8-, 10- and 16-bit fields.
+TEST(OutputMergerFast, EncodeMatchesOverASweep) {
+    std::vector<float> sweep;
+    for (int i = -(1 << 17); i <= 3 << 17; ++i) sweep.push_back(static_cast<float>(i) / static_cast<float>(1 << 18));
+    std::vector<float> bytes = sweep, ten_bits = sweep, sixteen_bits = sweep;
+    add_rounding_boundaries(bytes, 255, 64);
+    add_rounding_boundaries(ten_bits, 1023, 32);
+    add_rounding_boundaries(sixteen_bits, 65535, 3);
+    const std::pair<Format, const std::vector<float>*> targets[] = {
+        {Format::A8R8G8B8, &bytes},        {Format::X8R8G8B8, &bytes},         {Format::A8B8G8R8, &bytes},
+        {Format::A2R10G10B10, &ten_bits},  {Format::A2B10G10R10, &ten_bits},   {Format::G16R16, &sixteen_bits},
+        {Format::A16B16G16R16, &sixteen_bits}};
+    for (const auto& [f, list] : targets) {
+        const std::vector<float>& values = *list;
         Case c;
         c.color[0] = Surface(f, 8, 2);
         c.lanes.quad_count = 4;
@@ -285,7 +299,7 @@ TEST(OutputMergerFast, EncodeMatchesOverASweep) {
                 const float v = values[(at + i) % values.size()];
                 c.batch.render_target(0)[i % 4][i / 4] = v;
             }
-            ASSERT_TRUE(same_both_ways(c)) << "values from " << at;
+            ASSERT_TRUE(same_both_ways(c)) << "format " << static_cast<uint32_t>(f) << ", values from " << at;
         }
     }
 }
