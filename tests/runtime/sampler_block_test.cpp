@@ -76,6 +76,26 @@ SamplerState random_state(std::mt19937& rng) {
     return s;
 }
 
+// Samples `request` through both samplers: success where every channel of every lane has the
+// same bits (where `nans_alike`, any two NaNs count as the same: which NaN a sum of two gives
+// depends on the operand order a compiler picks), else the first lane that differs.
+::testing::AssertionResult same_texels(TextureSampler& block, TextureSampler& lanes, const emu::TextureRequest& request,
+                                       bool nans_alike) {
+    std::array<emu::FloatLanes, 4> a, b;
+    block.sample(request, a);
+    lanes.sample(request, b);
+    for (unsigned c = 0; c < 4; ++c)
+        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+            if (nans_alike && std::isnan(a[c][l]) && std::isnan(b[c][l])) continue;
+            if (std::bit_cast<uint32_t>(a[c][l]) != std::bit_cast<uint32_t>(b[c][l]))
+                return ::testing::AssertionFailure() << "channel " << c << " lane " << l << ": " << a[c][l] << " (0x"
+                                                     << std::hex << std::bit_cast<uint32_t>(a[c][l]) << ") vs "
+                                                     << b[c][l] << " (0x" << std::bit_cast<uint32_t>(b[c][l]) << ")"
+                                                     << std::dec;
+        }
+    return ::testing::AssertionSuccess();
+}
+
 // Quads around a random point with random per-quad derivatives (minification, magnification
 // and everything between), some lanes replaced by special values.
 emu::TextureRequest random_request(std::mt19937& rng, std::array<emu::FloatLanes, 4>& coords) {
@@ -156,9 +176,6 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
             for (unsigned k = 0; k < 20; ++k) {
                 std::array<emu::FloatLanes, 4> coords;
                 const emu::TextureRequest request = random_request(rng, coords);
-                std::array<emu::FloatLanes, 4> a, b;
-                block.sample(request, a);
-                lanes.sample(request, b);
                 ++total;
                 block_requests += applies ? 1 : 0;
                 volume_block_requests += applies && volume ? 1 : 0;
@@ -174,15 +191,9 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
                 srgb_block_requests += applies && state.srgb_texture && format_info(format)->srgb ? 1 : 0;
                 anisotropic_block_requests +=
                     applies && state.min_filter == TextureFilter::Anisotropic && state.max_anisotropy > 1 ? 1 : 0;
-                // (R32F's random texels include NaNs; which NaN a sum of two gives depends on the
-                // operand order a compiler picks, and the engine stores every NaN as one pattern.)
-                for (unsigned c = 0; c < 4; ++c)
-                    for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-                        if (std::isnan(a[c][l]) && std::isnan(b[c][l])) continue;
-                        ASSERT_EQ(std::bit_cast<uint32_t>(a[c][l]), std::bit_cast<uint32_t>(b[c][l]))
-                            << "round " << round << " channel " << c << " lane " << l << ": " << a[c][l] << " vs "
-                            << b[c][l] << " (block path " << applies << ", " << w << "x" << h << ")";
-                    }
+                // (R32F's random texels include NaNs, and the engine stores every NaN as one pattern.)
+                ASSERT_TRUE(same_texels(block, lanes, request, true))
+                    << "round " << round << " (block path " << applies << ", " << w << "x" << h << ")";
             }
         }
     }
@@ -243,14 +254,8 @@ TEST(SamplerBlockPath, TrilinearLevelsAtEveryLodStepMatchThePerLanePath) {
             }
             emu::TextureRequest r;
             r.coordinates = &coords;
-            std::array<emu::FloatLanes, 4> a, b;
-            block.sample(r, a);
-            lanes.sample(r, b);
-            for (unsigned c = 0; c < 4; ++c)
-                for (unsigned l = 0; l < emu::kBatchLanes; ++l)
-                    ASSERT_EQ(std::bit_cast<uint32_t>(a[c][l]), std::bit_cast<uint32_t>(b[c][l]))
-                        << "step " << k << ", offset " << first_offset + static_cast<int>(l / 4) << " ulps, channel " << c
-                        << ", lane " << l;
+            // (Quad q's offset: first_offset + q ulps.)
+            ASSERT_TRUE(same_texels(block, lanes, r, false)) << "step " << k << ", first offset " << first_offset << " ulps";
             ++compared;
         }
     // Diagonal derivatives (d, d) of powers of two: squares 2 d^2 that are odd powers of two, whose
@@ -264,12 +269,7 @@ TEST(SamplerBlockPath, TrilinearLevelsAtEveryLodStepMatchThePerLanePath) {
         }
         emu::TextureRequest r;
         r.coordinates = &coords;
-        std::array<emu::FloatLanes, 4> a, b;
-        block.sample(r, a);
-        lanes.sample(r, b);
-        for (unsigned c = 0; c < 4; ++c)
-            for (unsigned l = 0; l < emu::kBatchLanes; ++l)
-                ASSERT_EQ(std::bit_cast<uint32_t>(a[c][l]), std::bit_cast<uint32_t>(b[c][l])) << "2^-" << n << ", lane " << l;
+        ASSERT_TRUE(same_texels(block, lanes, r, false)) << "2^-" << n;
         ++compared;
     }
     EXPECT_EQ(compared, 939u * 4u + 14u);
@@ -400,17 +400,9 @@ TEST(SamplerBlockPath, PointLookupsOfScreenAlignedBatchesReadTheirTexelRows) {
                         }
                         emu::TextureRequest request;
                         request.coordinates = &coords;
-                        std::array<emu::FloatLanes, 4> a, b;
-                        block.sample(request, a);
-                        lanes.sample(request, b);
-                        for (unsigned c = 0; c < 4; ++c)
-                            for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-                                if (std::isnan(a[c][l]) && std::isnan(b[c][l])) continue;
-                                ASSERT_EQ(std::bit_cast<uint32_t>(a[c][l]), std::bit_cast<uint32_t>(b[c][l]))
-                                    << format_info(format)->name << " at " << x0 << ", " << y0 << " channel " << c
-                                    << " lane " << l << (addresses64 ? " (64-bit addresses)" : "")
-                                    << (avx2 ? " (AVX2 instance)" : "");
-                            }
+                        ASSERT_TRUE(same_texels(block, lanes, request, true))
+                            << format_info(format)->name << " at " << x0 << ", " << y0
+                            << (addresses64 ? " (64-bit addresses)" : "") << (avx2 ? " (AVX2 instance)" : "");
                     }
             }
         }
