@@ -798,6 +798,34 @@ SM2_AVX2_INLINE void _mm512_mask_i32scatter_ps(void* base, __mmask16 k, Ints512 
     _mm512_mask_i32scatter_epi32(base, k, idx, _mm512_castps_si512(v), scale);
 }
 
+// ---------------------------------------------------------------------------------------------
+// Lane sets (unorm8_avx512.h): here a vector, all-ones on the lanes of the set, which a compare
+// gives and a blend reads as it is.
+
+using LaneSet = Ints512;
+SM2_AVX2_INLINE LaneSet lanes_eq_epi32(Ints512 a, Ints512 b) {
+    return {_mm256_cmpeq_epi32(a.lo, b.lo), _mm256_cmpeq_epi32(a.hi, b.hi)};
+}
+SM2_AVX2_INLINE LaneSet lanes_lt_epi32(Ints512 a, Ints512 b) {
+    return {_mm256_cmpgt_epi32(b.lo, a.lo), _mm256_cmpgt_epi32(b.hi, a.hi)};
+}
+template <int Predicate>
+SM2_AVX2_INLINE LaneSet lanes_cmp_ps(Floats512 a, Floats512 b) {
+    return {_mm256_castps_si256(compare8(a.lo, b.lo, Predicate)), _mm256_castps_si256(compare8(a.hi, b.hi, Predicate))};
+}
+SM2_AVX2_INLINE LaneSet lanes_and(LaneSet a, LaneSet b) { return _mm512_and_si512(a, b); }
+SM2_AVX2_INLINE LaneSet lanes_or(LaneSet a, LaneSet b) { return _mm512_or_si512(a, b); }
+SM2_AVX2_INLINE LaneSet lanes_andnot(LaneSet a, LaneSet b) {  // b and not a
+    return {_mm256_andnot_si256(a.lo, b.lo), _mm256_andnot_si256(a.hi, b.hi)};
+}
+SM2_AVX2_INLINE __mmask16 lanes_mask(LaneSet a) { return mask32(a.lo, a.hi); }
+SM2_AVX2_INLINE Floats512 lanes_select_ps(Floats512 src, LaneSet s, Floats512 a) {
+    return {_mm256_blendv_ps(src.lo, a.lo, _mm256_castsi256_ps(s.lo)), _mm256_blendv_ps(src.hi, a.hi, _mm256_castsi256_ps(s.hi))};
+}
+SM2_AVX2_INLINE Ints512 lanes_select_epi32(Ints512 src, LaneSet s, Ints512 a) {
+    return _mm512_castps_si512(lanes_select_ps(_mm512_castsi512_ps(src), s, _mm512_castsi512_ps(a)));
+}
+
 // unorm8_avx512.h's conversions, for the AVX2 instances.
 #define SM2_BLOCK SM2_AVX2
 namespace unorm8 {

@@ -52,6 +52,40 @@ using Floats512 = __m512;
 using Ints512 = __m512i;
 using Doubles512 = __m512d;
 
+// A set of the 16 lanes for the kernels' selects (LaneSet): a mask register here; in the AVX2
+// instance (avx512_on_avx2.h) a vector of all-ones and all-zeros lanes, so that a compare feeds
+// its blends without the way through a 16-bit mask and back, two MOVMSKPS and a broadcast and
+// shift per use. lanes_mask() gives the 16-bit mask where a kernel needs one (a branch, a
+// masked load).
+using LaneSet = __mmask16;
+SM2_AVX512 __attribute__((always_inline)) inline LaneSet lanes_eq_epi32(Ints512 a, Ints512 b) {
+    return _mm512_cmpeq_epi32_mask(a, b);
+}
+SM2_AVX512 __attribute__((always_inline)) inline LaneSet lanes_lt_epi32(Ints512 a, Ints512 b) {
+    return _mm512_cmplt_epi32_mask(a, b);
+}
+template <int Predicate>
+SM2_AVX512 __attribute__((always_inline)) inline LaneSet lanes_cmp_ps(Floats512 a, Floats512 b) {
+    return _mm512_cmp_ps_mask(a, b, Predicate);
+}
+SM2_AVX512 __attribute__((always_inline)) inline LaneSet lanes_and(LaneSet a, LaneSet b) {
+    return static_cast<LaneSet>(a & b);
+}
+SM2_AVX512 __attribute__((always_inline)) inline LaneSet lanes_or(LaneSet a, LaneSet b) {
+    return static_cast<LaneSet>(a | b);
+}
+SM2_AVX512 __attribute__((always_inline)) inline LaneSet lanes_andnot(LaneSet a, LaneSet b) {  // b and not a
+    return static_cast<LaneSet>(~a & b);
+}
+SM2_AVX512 __attribute__((always_inline)) inline __mmask16 lanes_mask(LaneSet a) { return a; }
+// `a` on the lanes of `s`, `src` on the others (_mm512_mask_mov_ps's order).
+SM2_AVX512 __attribute__((always_inline)) inline Floats512 lanes_select_ps(Floats512 src, LaneSet s, Floats512 a) {
+    return _mm512_mask_mov_ps(src, s, a);
+}
+SM2_AVX512 __attribute__((always_inline)) inline Ints512 lanes_select_epi32(Ints512 src, LaneSet s, Ints512 a) {
+    return _mm512_mask_mov_epi32(src, s, a);
+}
+
 #define SM2_BLOCK SM2_AVX512
 SM2_AVX512_CODE_BEGIN
 namespace unorm8 {

@@ -275,6 +275,71 @@ TEST(SamplerBlockPath, TrilinearLevelsAtEveryLodStepMatchThePerLanePath) {
     EXPECT_EQ(compared, 939u * 4u + 14u);
 }
 
+// Cube lookups of finite directions, the common case that the random requests above seldom draw
+// (one of their coordinates in 12 is a NaN or an infinity, and a batch has 48): quads round
+// directions on every face, across the edges and corners between faces, on the ties between axes
+// (|x| = |y|, |y| = |z|), with -0 components and the zero vector, and batches whose only special
+// values are infinite components; magnified and minified, LINEAR and POINT, exact and fixed-point
+// filtering, with and without texldp's divide.
+TEST(SamplerBlockPath, CubeLookupsOnEveryFaceMatchThePerLanePath) {
+    std::mt19937 rng(20261130);
+    const Texture texture = random_texture(rng, Format::A8R8G8B8, 32, 32, 0, 0, true);
+    TextureSampler block, lanes;
+    block.set_texture(0, &texture);
+    lanes.set_texture(0, &texture);
+    lanes.set_block_path(false);
+    std::normal_distribution<float> gauss(0.0f, 1.0f);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f), scale(-9.0f, 1.0f), length(-3.0f, 3.0f);
+    unsigned compared = 0;
+    for (unsigned round = 0; round < 400; ++round) {
+        SamplerState state;
+        state.mag_filter = round % 4 == 3 ? TextureFilter::Point : TextureFilter::Linear;
+        state.min_filter = round % 8 == 5 ? TextureFilter::Point : TextureFilter::Linear;
+        state.mip_filter = round % 3 == 0 ? TextureFilter::Point : TextureFilter::Linear;
+        const FilterPrecision precision = round % 2 ? FilterPrecision::Exact : FilterPrecision::Fixed8;
+        for (TextureSampler* s : {&block, &lanes}) {
+            s->set_state(0, state);
+            s->set_precision(precision);
+        }
+        block.prepare();
+        if (!block.block_path_applies(0)) GTEST_SKIP() << "no block path on this CPU";
+        std::array<emu::FloatLanes, 4> coords{};
+        for (unsigned q = 0; q < emu::kBatchQuads; ++q) {
+            float p[3] = {gauss(rng), gauss(rng), gauss(rng)};
+            switch (rng() % 6) {
+            case 0: p[1] = std::copysign(p[0], unit(rng)); break;  // an x-y edge: |x| = |y|
+            case 1: p[2] = std::copysign(p[1], unit(rng)); break;  // a y-z edge
+            case 2: p[0] = p[1] = std::copysign(p[2], unit(rng)); break;  // a corner
+            case 3: p[rng() % 3] = rng() % 2 ? -0.0f : 0.0f; break;
+            case 4: if (q == 0 && round % 16 == 0) p[0] = p[1] = p[2] = 0.0f; break;  // no direction at all
+            case 5:
+                if (round % 4 == 1) {  // infinite components, one or two (and no NaN in the batch)
+                    const unsigned first = rng() % 3;
+                    p[first] = std::copysign(std::numeric_limits<float>::infinity(), unit(rng));
+                    if (rng() % 2) p[(first + 1 + rng() % 2) % 3] = std::copysign(std::numeric_limits<float>::infinity(), unit(rng));
+                }
+                break;
+            default: break;
+            }
+            const float size = std::exp2(length(rng));
+            float d[2][3];
+            for (auto& axis : d)
+                for (float& c : axis) c = std::exp2(scale(rng)) * unit(rng);
+            for (unsigned i = 0; i < 4; ++i) {
+                const float x = static_cast<float>(i & 1u), y = static_cast<float>(i >> 1);
+                for (unsigned c = 0; c < 3; ++c) coords[c][4 * q + i] = size * p[c] + x * d[0][c] + y * d[1][c];
+                coords[3][4 * q + i] = round % 5 == 4 ? 0.5f + static_cast<float>(rng() % 4) : 1.0f;
+            }
+        }
+        emu::TextureRequest r;
+        r.coordinates = &coords;
+        r.variant = round % 5 == 4 ? emu::TextureVariant::Projected : emu::TextureVariant::Plain;
+        ASSERT_TRUE(same_texels(block, lanes, r, false)) << "round " << round;
+        ++compared;
+    }
+    EXPECT_EQ(compared, 400u);
+}
+
 TEST(SamplerFilter, Fixed8BilinearOfNarrowUnormIsTheCorrectlyRoundedExactSum) {
     std::mt19937 rng(11);
     struct Field { Format format; unsigned channel, shift, bits; };
