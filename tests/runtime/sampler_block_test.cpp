@@ -279,8 +279,9 @@ TEST(SamplerBlockPath, TrilinearLevelsAtEveryLodStepMatchThePerLanePath) {
 // (one of their coordinates in 12 is a NaN or an infinity, and a batch has 48): quads round
 // directions on every face, across the edges and corners between faces, on the ties between axes
 // (|x| = |y|, |y| = |z|), with -0 components and the zero vector, and batches whose only special
-// values are infinite components; magnified and minified, LINEAR and POINT, exact and fixed-point
-// filtering, with and without texldp's divide.
+// values are infinite components, and coherent batches (every lane on one face and level, whose
+// tables' entries the filter broadcasts); magnified and minified, LINEAR and POINT, exact and
+// fixed-point filtering, 32-bit offsets and 64-bit addresses, with and without texldp's divide.
 TEST(SamplerBlockPath, CubeLookupsOnEveryFaceMatchThePerLanePath) {
     std::mt19937 rng(20261130);
     const Texture texture = random_texture(rng, Format::A8R8G8B8, 32, 32, 0, 0, true);
@@ -301,12 +302,18 @@ TEST(SamplerBlockPath, CubeLookupsOnEveryFaceMatchThePerLanePath) {
             s->set_state(0, state);
             s->set_precision(precision);
         }
+        block.set_block_64bit_addresses(round % 4 >= 2);
         block.prepare();
         if (!block.block_path_applies(0)) GTEST_SKIP() << "no block path on this CPU";
         std::array<emu::FloatLanes, 4> coords{};
+        // A third of the batches coherent, as a surface's: every quad near the first one's direction.
+        const bool coherent = round % 3 == 1;
+        const float shared[3] = {gauss(rng), gauss(rng), gauss(rng)};
         for (unsigned q = 0; q < emu::kBatchQuads; ++q) {
             float p[3] = {gauss(rng), gauss(rng), gauss(rng)};
-            switch (rng() % 6) {
+            if (coherent)
+                for (unsigned c = 0; c < 3; ++c) p[c] = shared[c] + 0.01f * p[c];
+            switch (coherent ? 6 : rng() % 6) {
             case 0: p[1] = std::copysign(p[0], unit(rng)); break;  // an x-y edge: |x| = |y|
             case 1: p[2] = std::copysign(p[1], unit(rng)); break;  // a y-z edge
             case 2: p[0] = p[1] = std::copysign(p[2], unit(rng)); break;  // a corner
@@ -321,10 +328,11 @@ TEST(SamplerBlockPath, CubeLookupsOnEveryFaceMatchThePerLanePath) {
                 break;
             default: break;
             }
-            const float size = std::exp2(length(rng));
+            const float size = coherent ? 1.0f : std::exp2(length(rng));
+            // (Coherent batches: small derivatives, so that every lane reads the first level.)
             float d[2][3];
             for (auto& axis : d)
-                for (float& c : axis) c = std::exp2(scale(rng)) * unit(rng);
+                for (float& c : axis) c = std::exp2(coherent ? -14.0f : scale(rng)) * unit(rng);
             for (unsigned i = 0; i < 4; ++i) {
                 const float x = static_cast<float>(i & 1u), y = static_cast<float>(i >> 1);
                 for (unsigned c = 0; c < 3; ++c) coords[c][4 * q + i] = size * p[c] + x * d[0][c] + y * d[1][c];
