@@ -955,9 +955,13 @@ void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::
         if (!prepared_[request.sampler]) prepare_stage(request.sampler);
         const BlockLevels* levels_ptr = block_levels_[request.sampler].get();
         if (levels_ptr != nullptr) {
+            const Context& c = levels_ptr->context;
+            auto& memo = level_memo_[request.sampler];
             if (levels_ptr->avx512)
-                return avx512::block_sample(levels_ptr->context, *levels_ptr, request, quads, level_memo_[request.sampler], texels);
-            return avx2::block_sample(levels_ptr->context, *levels_ptr, request, quads, level_memo_[request.sampler], texels);
+                return c.cube ? avx512::block_sample<true>(c, *levels_ptr, request, quads, memo, texels)
+                              : avx512::block_sample<false>(c, *levels_ptr, request, quads, memo, texels);
+            return c.cube ? avx2::block_sample<true>(c, *levels_ptr, request, quads, memo, texels)
+                          : avx2::block_sample<false>(c, *levels_ptr, request, quads, memo, texels);
         }
     }
     sample_lanes(request, quads, texels);
