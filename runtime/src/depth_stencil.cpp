@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 
+#include "quad_rows.h"
 #include "unorm8_avx512.h"
 
 namespace sm2::runtime {

@@ -289,8 +289,8 @@ float random_depth(std::mt19937& rng, unsigned bits) {
 // The 16-lane depth/stencil test against the lane-by-lane loop: the same lanes pass and the
 // same depth and stencil values are stored, for every format, compare function, write enable
 // and (in half the trials) stencil state (both faces, every operation, reference, masks), with
-// lanes outside the surface, lanes off, repeated pixels and depth values on the formats'
-// rounding ties.
+// lanes outside the surface, lanes off, repeated pixels, batches in one quad row and depth
+// values on the formats' rounding ties.
 TEST(DepthStencil, SixteenLanePathMatchesTheLaneByLaneLoop) {
     std::mt19937 rng(20261128);
     const Format formats[] = {Format::D16, Format::D16_LOCKABLE, Format::D24S8, Format::D24X8, Format::D15S1,
@@ -351,6 +351,15 @@ TEST(DepthStencil, SixteenLanePathMatchesTheLaneByLaneLoop) {
                 }
             }
             if (trial % 7 == 0) quad[3] = quad[1];
+            // In every fifth trial the four quads side by side in one quad row (quad_rows.h), as
+            // most batches of a rasterized triangle lie: inside the surface the 16-lane path
+            // reads and writes them by rows; at x0 = -2 or 6 or y0 = -2 or 8 they cross its edge.
+            if (trial % 5 == 1) {
+                const int32_t x0 = 2 * std::uniform_int_distribution<int32_t>(-1, 3)(rng);
+                const int32_t y0 = 2 * std::uniform_int_distribution<int32_t>(-1, 4)(rng);
+                for (unsigned q = 0; q < 4; ++q) quad[q] = {x0 + 2 * static_cast<int32_t>(q), y0};
+                if (rng() % 3 == 0) quad[1 + rng() % 3].second += 2;  // a step down: not one row
+            }
             for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
                 x[l] = quad[l / 4].first + static_cast<int32_t>(l & 1u);
                 y[l] = quad[l / 4].second + static_cast<int32_t>(l >> 1 & 1u);
