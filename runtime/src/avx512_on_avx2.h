@@ -85,6 +85,7 @@
 #undef _mm512_maskz_mov_pd
 #undef _mm512_maskz_mov_ps
 #undef _mm512_max_epi32
+#undef _mm512_max_pd
 #undef _mm512_max_ps
 #undef _mm512_min_epi32
 #undef _mm512_min_ps
@@ -328,6 +329,7 @@ SM2_AVX2_INLINE Doubles512 _mm512_sub_pd(Doubles512 a, Doubles512 b) { return {_
 SM2_AVX2_INLINE Doubles512 _mm512_mul_pd(Doubles512 a, Doubles512 b) { return {_mm256_mul_pd(a.lo, b.lo), _mm256_mul_pd(a.hi, b.hi)}; }
 SM2_AVX2_INLINE Doubles512 _mm512_div_pd(Doubles512 a, Doubles512 b) { return {_mm256_div_pd(a.lo, b.lo), _mm256_div_pd(a.hi, b.hi)}; }
 SM2_AVX2_INLINE Doubles512 _mm512_sqrt_pd(Doubles512 a) { return {_mm256_sqrt_pd(a.lo), _mm256_sqrt_pd(a.hi)}; }
+SM2_AVX2_INLINE Doubles512 _mm512_max_pd(Doubles512 a, Doubles512 b) { return {_mm256_max_pd(a.lo, b.lo), _mm256_max_pd(a.hi, b.hi)}; }
 
 SM2_AVX2_INLINE Ints512 _mm512_add_epi32(Ints512 a, Ints512 b) { return {_mm256_add_epi32(a.lo, b.lo), _mm256_add_epi32(a.hi, b.hi)}; }
 SM2_AVX2_INLINE Ints512 _mm512_sub_epi32(Ints512 a, Ints512 b) { return {_mm256_sub_epi32(a.lo, b.lo), _mm256_sub_epi32(a.hi, b.hi)}; }
