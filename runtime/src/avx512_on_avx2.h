@@ -816,7 +816,6 @@ SM2_AVX2_INLINE LaneSet lanes_cmp_ps(Floats512 a, Floats512 b) {
     return {_mm256_castps_si256(compare8(a.lo, b.lo, Predicate)), _mm256_castps_si256(compare8(a.hi, b.hi, Predicate))};
 }
 SM2_AVX2_INLINE LaneSet lanes_and(LaneSet a, LaneSet b) { return _mm512_and_si512(a, b); }
-SM2_AVX2_INLINE LaneSet lanes_or(LaneSet a, LaneSet b) { return _mm512_or_si512(a, b); }
 SM2_AVX2_INLINE LaneSet lanes_andnot(LaneSet a, LaneSet b) {  // b and not a
     return {_mm256_andnot_si256(a.lo, b.lo), _mm256_andnot_si256(a.hi, b.hi)};
 }

@@ -71,9 +71,6 @@ SM2_AVX512 __attribute__((always_inline)) inline LaneSet lanes_cmp_ps(Floats512 
 SM2_AVX512 __attribute__((always_inline)) inline LaneSet lanes_and(LaneSet a, LaneSet b) {
     return static_cast<LaneSet>(a & b);
 }
-SM2_AVX512 __attribute__((always_inline)) inline LaneSet lanes_or(LaneSet a, LaneSet b) {
-    return static_cast<LaneSet>(a | b);
-}
 SM2_AVX512 __attribute__((always_inline)) inline LaneSet lanes_andnot(LaneSet a, LaneSet b) {  // b and not a
     return static_cast<LaneSet>(~a & b);
 }
