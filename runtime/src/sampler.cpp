@@ -241,6 +241,12 @@ struct TextureSampler::BlockLevels {
     // copy_of[k] = k) are filtered; block_lookup() copies the others.
     std::array<uint8_t, 4> copy_of{0, 1, 2, 3};
     unsigned filtered = 0xFu;
+    // A BORDER tap adds nothing to the float sums of any filtered channel, so the filter zeroes
+    // the tap's weight (four selects a 2x2 footprint) instead of replacing its decoded values by
+    // BORDERCOLOR (a select per tap and channel): every filtered channel's BORDERCOLOR is +0 and
+    // its decoded values are finite and non-negative (a UNORM field or a constant; sRGB reads
+    // of them too), where v * 0 = +0 = 0 * w, the same product in the same place of the sum.
+    bool zero_border = false;
     // block_filter_level()'s instance for these levels in the instance set that `avx512` names
     // (block_filter_for(), sampler_block.inc), chosen once here.
     void (*filter)() = nullptr;
@@ -834,6 +840,12 @@ bool block_supported(const Context& c, BlockLevels& levels) {
                 break;
             }
         }
+    }
+    levels.zero_border = reads_border;
+    for (unsigned k = 0; k < 4; ++k) {
+        const BlockChannel::Kind kind = (*format)[k].kind;
+        const bool non_negative = kind == BlockChannel::Kind::Unorm || kind == BlockChannel::Kind::Zero || kind == BlockChannel::Kind::One;
+        if ((levels.filtered >> k & 1u) && !(non_negative && std::bit_cast<uint32_t>(c.border[k]) == 0u)) levels.zero_border = false;
     }
     levels.texel_bytes = c.bpp;
     levels.flat_bytes = !c.volume && !c.cube && (c.bpp == 4 || c.bpp == 8) ? c.bpp : 0;

@@ -348,6 +348,70 @@ TEST(SamplerBlockPath, CubeLookupsOnEveryFaceMatchThePerLanePath) {
     EXPECT_EQ(compared, 400u);
 }
 
+// BORDER with a transparent BORDERCOLOR (0x00000000, the default), where the filter gives a
+// tap outside the level a weight of 0 instead of BORDERCOLOR's 0 as its value
+// (BlockLevels::zero_border): volumes and 2D levels, footprints across every edge and wholly
+// outside, POINT lanes beside LINEAR ones (MAGFILTER POINT, MINFILTER LINEAR, derivatives
+// either side of one texel a pixel), against the per-lane path. Besides the UNORM formats, the
+// kinds the rule must not take: signed fields (a negative value times 0 is -0, where the
+// border's product is +0), floats (NaN and infinity times 0 are NaN), and a border whose
+// alpha alone is not 0.
+TEST(SamplerBlockPath, TransparentBorderMatchesThePerLanePath) {
+    std::mt19937 rng(20261201);
+    const Format formats[] = {Format::A4R4G4B4, Format::A8R8G8B8, Format::L8,  Format::A8,   Format::R5G6B5,
+                              Format::A1R5G5B5, Format::A16B16G16R16, Format::V8U8, Format::R32F, Format::R16F};
+    std::uniform_real_distribution<float> centre(-0.4f, 1.4f), scale(-4.0f, 2.0f), unit(-1.0f, 1.0f);
+    unsigned compared = 0;
+    for (unsigned round = 0; round < 240; ++round) {
+        const Format format = formats[round % std::size(formats)];
+        const bool volume = round % 2 == 0;
+        const uint32_t w = 1u + rng() % 9, h = 1u + rng() % 9, d = volume ? 1u + rng() % 5 : 0u;
+        const Texture texture = random_texture(rng, format, w, h, 1, d);
+        TextureSampler block, lanes;
+        block.set_texture(0, &texture);
+        block.set_block_64bit_addresses(round % 4 >= 2);
+        lanes.set_texture(0, &texture);
+        lanes.set_block_path(false);
+        SamplerState state;
+        state.address_u = state.address_v = state.address_w = TextureAddress::Border;
+        if (round % 5 == 3) state.address_v = TextureAddress::Clamp;  // (one axis not BORDER)
+        state.border_color = round % 6 == 5 ? 0x01000000u : 0u;
+        state.mag_filter = round % 3 == 0 ? TextureFilter::Point : TextureFilter::Linear;
+        state.min_filter = TextureFilter::Linear;
+        state.mip_filter = TextureFilter::None;
+        state.srgb_texture = round % 7 == 6;
+        const FilterPrecision precision = round % 4 == 1 ? FilterPrecision::Exact : FilterPrecision::Fixed8;
+        for (TextureSampler* s : {&block, &lanes}) {
+            s->set_state(0, state);
+            s->set_precision(precision);
+        }
+        block.prepare();
+        if (!block.block_path_applies(0)) GTEST_SKIP() << "no block path on this CPU";
+        for (unsigned k = 0; k < 12; ++k) {
+            std::array<emu::FloatLanes, 4> coords{};
+            for (unsigned q = 0; q < emu::kBatchQuads; ++q) {
+                const float u = centre(rng), v = centre(rng), z = centre(rng);
+                // Per quad: about one texel a pixel, so that under a POINT MAGFILTER some quads
+                // magnify (POINT) and others minify (LINEAR).
+                const float du = std::exp2(scale(rng)) * unit(rng) / static_cast<float>(w);
+                const float dv = std::exp2(scale(rng)) * unit(rng) / static_cast<float>(h);
+                for (unsigned i = 0; i < 4; ++i) {
+                    const float x = static_cast<float>(i & 1u), y = static_cast<float>(i >> 1);
+                    coords[0][4 * q + i] = u + x * du;
+                    coords[1][4 * q + i] = v + y * dv;
+                    coords[2][4 * q + i] = z + x * du;
+                    coords[3][4 * q + i] = 1.0f;
+                }
+            }
+            emu::TextureRequest r;
+            r.coordinates = &coords;
+            ASSERT_TRUE(same_texels(block, lanes, r, false)) << "round " << round << " " << w << "x" << h << "x" << d;
+            ++compared;
+        }
+    }
+    EXPECT_EQ(compared, 240u * 12u);
+}
+
 TEST(SamplerFilter, Fixed8BilinearOfNarrowUnormIsTheCorrectlyRoundedExactSum) {
     std::mt19937 rng(11);
     struct Field { Format format; unsigned channel, shift, bits; };
