@@ -199,8 +199,8 @@ using BlockFormat = std::array<BlockChannel, 4>;
 // stage's context (built once per prepare(), not per lookup).
 struct TextureSampler::BlockLevels {
     static constexpr unsigned kMax = 16;
-    // The faces' levels measure the same: these tables hold face 0's. size: each level's bytes.
-    alignas(64) std::array<int32_t, kMax> width{}, height{}, depth{}, row{}, slice{}, size{};
+    // The faces' levels measure the same: these tables hold face 0's.
+    alignas(64) std::array<int32_t, kMax> width{}, height{}, depth{}, row{}, slice{};
     // Where face f's level l starts (f * kMax + l; 2D and volume textures: face 0, the first kMax
     // entries): its address, and where every level lies within 2^31 bytes of `anchor`, its
     // 32-bit offset from it, so a gather takes 16 32-bit offsets instead of two halves of 64-bit
@@ -863,7 +863,6 @@ bool block_supported(const Context& c, BlockLevels& levels) {
         levels.depth[l] = static_cast<int32_t>(s.depth());
         levels.row[l] = static_cast<int32_t>(s.row_pitch());
         levels.slice[l] = static_cast<int32_t>(s.slice_pitch());
-        levels.size[l] = static_cast<int32_t>(s.bytes().size());
         all_pow2 = all_pow2 && std::has_single_bit(s.width()) && std::has_single_bit(s.height()) &&
                    (!c.volume || std::has_single_bit(s.depth()));
     }
@@ -873,7 +872,6 @@ bool block_supported(const Context& c, BlockLevels& levels) {
         levels.depth[l] = levels.depth[count - 1];
         levels.row[l] = levels.row[count - 1];
         levels.slice[l] = levels.slice[count - 1];
-        levels.size[l] = levels.size[count - 1];
     }
     // 32-bit offsets when every byte of every level (of every face) lies within [anchor, anchor + 2^31).
     uintptr_t low = UINTPTR_MAX, high = 0;

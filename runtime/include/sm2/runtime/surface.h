@@ -15,14 +15,22 @@ namespace sm2::runtime {
 // then split into the same whole lines as the tiles do (32 texels of 4 bytes are two lines), so
 // the block paths' 8-texel row loads and stores never straddle two lines, and no line is shared
 // by two tiles, which two threads may be writing at once.
+// The storage also reaches at least kReadSlack bytes past its last element (whole lines): the
+// sampler's block path reads a 1- or 2-byte texel as the 32-bit word at its offset (ignoring
+// the bytes above it), so the word of a level's last texel stays inside the allocation without
+// a per-lane test. The slack's bytes are never written and never decoded.
 template <class T>
 struct CacheLineAllocator {
     using value_type = T;
-    static constexpr std::align_val_t kAlignment{64};
+    static constexpr size_t kLine = 64, kReadSlack = 3;
+    static constexpr std::align_val_t kAlignment{kLine};
     CacheLineAllocator() = default;
     template <class U>
     explicit CacheLineAllocator(const CacheLineAllocator<U>&) noexcept {}
-    T* allocate(size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
+    T* allocate(size_t n) {
+        if (n > (SIZE_MAX - kReadSlack - kLine) / sizeof(T)) throw std::bad_array_new_length();
+        return static_cast<T*>(::operator new((n * sizeof(T) + kReadSlack + kLine - 1) / kLine * kLine, kAlignment));
+    }
     void deallocate(T* p, size_t) noexcept { ::operator delete(p, kAlignment); }
     friend bool operator==(const CacheLineAllocator&, const CacheLineAllocator&) { return true; }
 };
