@@ -412,6 +412,62 @@ TEST(SamplerBlockPath, TransparentBorderMatchesThePerLanePath) {
     EXPECT_EQ(compared, 240u * 12u);
 }
 
+// 1- and 2-byte texels are read as the 32-bit word at their offset (block_narrow_words()), so
+// the word of a level's last texel reaches up to 3 bytes past the level: into the slack of its
+// storage (CacheLineAllocator::kReadSlack). Levels of whole cache lines (64 and 128 bytes, no
+// rounding to hide a missing slack), read at their last texels by POINT and LINEAR (CLAMP:
+// both taps of the edge lanes on the last texel), must give the per-lane path's values; under
+// AddressSanitizer (scripts/test.sh's second pass) a word past the allocation fails the test.
+TEST(SamplerBlockPath, NarrowTexelsAtTheStoragesEndMatchThePerLanePath) {
+    std::mt19937 rng(20261202);
+    struct Case {
+        Format format;
+        uint32_t w, h, d;
+    };
+    const Case cases[] = {{Format::L8, 64, 1, 0},      {Format::A8, 32, 2, 0},     {Format::A8L8, 32, 1, 0},
+                          {Format::A4R4G4B4, 32, 2, 0}, {Format::L8, 4, 4, 4},      {Format::R5G6B5, 4, 2, 4},
+                          {Format::A8L8, 2, 4, 4}};
+    unsigned compared = 0;
+    for (const Case& t : cases) {
+        const Texture texture = random_texture(rng, t.format, t.w, t.h, 1, t.d);
+        const auto& level = texture.surface(0).bytes();
+        ASSERT_EQ(level.size() % 64, 0u) << "the level must end on a line for the test to mean anything";
+        for (const TextureFilter filter : {TextureFilter::Point, TextureFilter::Linear}) {
+            TextureSampler block, lanes;
+            block.set_texture(0, &texture);
+            lanes.set_texture(0, &texture);
+            lanes.set_block_path(false);
+            SamplerState state;
+            state.address_u = state.address_v = state.address_w = TextureAddress::Clamp;
+            state.mag_filter = state.min_filter = filter;
+            state.mip_filter = TextureFilter::None;
+            for (TextureSampler* s : {&block, &lanes}) s->set_state(0, state);
+            block.prepare();
+            if (!block.block_path_applies(0)) GTEST_SKIP() << "no block path on this CPU";
+            std::uniform_real_distribution<float> jitter(-0.6f, 0.6f);
+            for (unsigned k = 0; k < 16; ++k) {
+                // Every lane near the last texel (x w - 1, y h - 1, z d - 1) or past it (clamped).
+                std::array<emu::FloatLanes, 4> coords{};
+                for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+                    const auto near_end = [&](uint32_t n) {
+                        return n == 0 ? 0.5f : (static_cast<float>(n) - 0.5f + jitter(rng)) / static_cast<float>(n);
+                    };
+                    coords[0][l] = near_end(t.w);
+                    coords[1][l] = near_end(t.h);
+                    coords[2][l] = near_end(t.d);
+                    coords[3][l] = 1.0f;
+                }
+                emu::TextureRequest r;
+                r.coordinates = &coords;
+                ASSERT_TRUE(same_texels(block, lanes, r, false))
+                    << format_info(t.format)->name << " " << t.w << "x" << t.h << "x" << t.d;
+                ++compared;
+            }
+        }
+    }
+    EXPECT_EQ(compared, std::size(cases) * 2u * 16u);
+}
+
 TEST(SamplerFilter, Fixed8BilinearOfNarrowUnormIsTheCorrectlyRoundedExactSum) {
     std::mt19937 rng(11);
     struct Field { Format format; unsigned channel, shift, bits; };
