@@ -29,7 +29,10 @@ Surface::Surface(Format format, uint32_t width, uint32_t height, uint32_t depth)
     texel_bytes_ = info->bytes;
     decoder_ = texel_decoder(format);
     encoder_ = texel_encoder(format);
-    data_.assign(slice_pitch_ * depth, std::byte{0});
+    // Value-initialized (zero): resize() on the empty vector, which the compiler turns into one
+    // memset; assign(n, byte{0}) through CacheLineAllocator stored byte by byte (15 M
+    // instructions of bench_1024's run).
+    data_.resize(slice_pitch_ * depth);
 }
 
 Float4 Surface::read(uint32_t x, uint32_t y, uint32_t z) const {

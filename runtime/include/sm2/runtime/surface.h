@@ -27,9 +27,12 @@ struct CacheLineAllocator {
     CacheLineAllocator() = default;
     template <class U>
     explicit CacheLineAllocator(const CacheLineAllocator<U>&) noexcept {}
+    // (std::vector asks for at most max_size() = SIZE_MAX / sizeof(T) elements, whose bytes plus
+    // the slack and the rounding could still wrap: the size saturates instead, which no
+    // operator new satisfies.)
     T* allocate(size_t n) {
-        if (n > (SIZE_MAX - kReadSlack - kLine) / sizeof(T)) throw std::bad_array_new_length();
-        return static_cast<T*>(::operator new((n * sizeof(T) + kReadSlack + kLine - 1) / kLine * kLine, kAlignment));
+        const size_t bytes = n > (SIZE_MAX - kReadSlack - kLine) / sizeof(T) ? SIZE_MAX : (n * sizeof(T) + kReadSlack + kLine - 1) / kLine * kLine;
+        return static_cast<T*>(::operator new(bytes, kAlignment));
     }
     void deallocate(T* p, size_t) noexcept { ::operator delete(p, kAlignment); }
     friend bool operator==(const CacheLineAllocator&, const CacheLineAllocator&) { return true; }
