@@ -76,6 +76,14 @@ SamplerState random_state(std::mt19937& rng) {
     return s;
 }
 
+// `block` and `lanes` on `texture` at stage 0: the first with the block path the CPU allows, the
+// second with the per-lane path (the reference).
+void bind_block_and_lanes(TextureSampler& block, TextureSampler& lanes, const Texture& texture) {
+    block.set_texture(0, &texture);
+    lanes.set_texture(0, &texture);
+    lanes.set_block_path(false);
+}
+
 // Samples `request` through both samplers: success where every channel of every lane has the
 // same bits (where `nans_alike`, any two NaNs count as the same: which NaN a sum of two gives
 // depends on the operand order a compiler picks), else the first lane that differs.
@@ -228,9 +236,7 @@ TEST(SamplerBlockPath, TrilinearLevelsAtEveryLodStepMatchThePerLanePath) {
     std::mt19937 rng(20261130);
     const Texture texture = random_texture(rng, Format::A8R8G8B8, 256, 256, 0);
     TextureSampler block, lanes;
-    block.set_texture(0, &texture);
-    lanes.set_texture(0, &texture);
-    lanes.set_block_path(false);
+    bind_block_and_lanes(block, lanes, texture);
     SamplerState state;
     state.mag_filter = state.min_filter = state.mip_filter = TextureFilter::Linear;
     for (TextureSampler* s : {&block, &lanes}) s->set_state(0, state);
@@ -434,9 +440,7 @@ TEST(SamplerBlockPath, NarrowTexelsAtTheStoragesEndMatchThePerLanePath) {
         ASSERT_EQ(level.size() % 64, 0u) << "the level must end on a line for the test to mean anything";
         for (const TextureFilter filter : {TextureFilter::Point, TextureFilter::Linear}) {
             TextureSampler block, lanes;
-            block.set_texture(0, &texture);
-            lanes.set_texture(0, &texture);
-            lanes.set_block_path(false);
+            bind_block_and_lanes(block, lanes, texture);
             SamplerState state;
             state.address_u = state.address_v = state.address_w = TextureAddress::Clamp;
             state.mag_filter = state.min_filter = filter;

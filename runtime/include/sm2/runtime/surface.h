@@ -31,7 +31,9 @@ struct CacheLineAllocator {
     // the slack and the rounding could still wrap: the size saturates instead, which no
     // operator new satisfies.)
     T* allocate(size_t n) {
-        const size_t bytes = n > (SIZE_MAX - kReadSlack - kLine) / sizeof(T) ? SIZE_MAX : (n * sizeof(T) + kReadSlack + kLine - 1) / kLine * kLine;
+        const size_t bytes = n > (SIZE_MAX - kReadSlack - kLine) / sizeof(T)
+                                 ? SIZE_MAX
+                                 : (n * sizeof(T) + kReadSlack + kLine - 1) / kLine * kLine;
         return static_cast<T*>(::operator new(bytes, kAlignment));
     }
     void deallocate(T* p, size_t) noexcept { ::operator delete(p, kAlignment); }
