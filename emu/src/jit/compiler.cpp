@@ -10,7 +10,10 @@
 // and folds the constants (the tests of masks, swizzles, negates, roundings disappear), keeps the
 // scratch vectors and the temporaries (a function-local array, never stored to the batch) in
 // registers and forwards values from step to step; the code generator
-// targets the host CPU (AVX-512 where there is one).
+// targets the host CPU (AVX-512 where there is one). The exact pow and lit are the exception:
+// their series are called out of line, one copy per process compiled from the same bitcode
+// (add_shared_kernel), because inlined at every use they made up most of a lighting shader's
+// code and compile time.
 //
 // Bit-identity with the interpreter (compiled by the C++ compiler of the build):
 //  - the same source for every rule, and IEEE semantics on both sides: no contraction (the
@@ -31,6 +34,8 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <mutex>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -125,6 +130,8 @@ struct Host {
     std::string cpu;
     std::string features;
     std::string error;  // why there is no jit
+    std::mutex shared_mutex;
+    std::set<std::string> shared_kernels;  // out-of-line kernels added to the main JITDylib
 };
 
 Host* create_host() {
@@ -272,6 +279,9 @@ std::string keep_library_calls(llvm::Module& module, const Host& host) {
     return {};
 }
 
+// The name of a kernel's out-of-line copy (add_shared_kernel).
+constexpr const char* kSharedSuffix = "_shared";
+
 std::string kernel_name(Opcode opcode, bool fast) {
     switch (opcode) {
 #define SM2_KERNEL_NAME(name) \
@@ -287,6 +297,9 @@ std::string kernel_name(Opcode opcode, bool fast) {
 class Emitter {
 public:
     Emitter(llvm::Module& module, const Host& host) : module_(module), context_(module.getContext()), host_(host) {}
+
+    // The kernels the emitted function calls out of line (call_shared).
+    const std::vector<std::string>& shared_kernels() const { return shared_kernels_; }
 
     std::string emit(const Executable& executable, const std::string& name) {
         llvm::Type* i8p = llvm::Type::getInt8PtrTy(context_);
@@ -315,6 +328,8 @@ public:
         auto* vector_type = llvm::ArrayType::get(llvm::Type::getFloatTy(context_), 4 * kBatchLanes);
         for (auto*& scratch : sources_) scratch = new_scratch(vector_type);
         result_ = new_scratch(vector_type);
+        for (auto*& scratch : call_sources_) scratch = new_scratch(vector_type);
+        call_result_ = new_scratch(vector_type);
         // The temporaries live in the function (registers, after SROA), not in the batch: only
         // the outputs, a0 and the killed lanes are a run's results, and stores nothing else reads
         // would cost a fifth of the code. A temporary read anywhere starts as the batch holds it
@@ -406,6 +421,46 @@ private:
         return {};
     }
 
+    // Calls the process's one out-of-line copy of kernel `name` (add_shared_kernel), through
+    // scratch vectors of its own: the step's scratch vectors stay in registers (SROA gives up
+    // on a vector whose address leaves the function). The declaration carries the attributes
+    // clang inferred for the kernel (nounwind, its pointers noalias and read- or write-only).
+    std::string call_shared(const std::string& name, unsigned source_count, unsigned mask) {
+        llvm::Function* kernel = module_.getFunction(name);
+        if (kernel == nullptr || kernel->isDeclaration()) return "the kernel bitcode has no " + name;
+        const std::string shared_name = name + kSharedSuffix;
+        auto* shared = llvm::dyn_cast<llvm::Function>(
+            module_.getOrInsertFunction(shared_name, kernel->getFunctionType()).getCallee());
+        if (shared == nullptr) return "kernel " + shared_name + " takes other arguments";
+        shared->setAttributes(kernel->getAttributes());
+        for (const char* target : {"target-cpu", "target-features", "tune-cpu"}) shared->removeFnAttr(target);
+        const auto bytes = builder_->getInt64(4 * kBatchLanes * sizeof(float));
+        const llvm::MaybeAlign align(64);
+        for (unsigned k = 0; k < source_count; ++k)
+            builder_->CreateMemCpy(call_sources_[k], align, sources_[k], align, bytes);
+        std::vector<llvm::Value*> arguments{call_result_, call_sources_[0], call_sources_[1], call_sources_[2],
+                                            u32(mask)};
+        for (unsigned i = 0; i < arguments.size(); ++i)
+            if (arguments[i]->getType() != shared->getArg(i)->getType())
+                arguments[i] = builder_->CreatePointerCast(arguments[i], shared->getArg(i)->getType());
+        builder_->CreateCall(shared, arguments);
+        builder_->CreateMemCpy(result_, align, call_result_, align, bytes);
+        if (std::find(shared_kernels_.begin(), shared_kernels_.end(), name) == shared_kernels_.end())
+            shared_kernels_.push_back(name);
+        return {};
+    }
+
+    // Whether the step's kernel is called out of line: exact pow and lit, whose vectorized
+    // series are the larger part of the code of the routines that use them and cost the code
+    // generator several times a call's work. pow with a def'd exponent stays inline: its
+    // integer test folds to the squarings (step_kernels.h).
+    bool out_of_line(const Step& step) const {
+        if (step.opcode == Opcode::Lit) return true;
+        if (step.opcode != Opcode::Pow) return false;
+        const StepSource& exponent = step.sources[1];
+        return !(exponent.kind == OperandKind::Constant && defs_.count(exponent.index) != 0);
+    }
+
     std::string emit_fetch(llvm::Value* scratch, const StepSource& s) {
         switch (s.kind) {
         case OperandKind::Lanes:
@@ -460,7 +515,9 @@ private:
         default: {
             const std::string name = kernel_name(step.opcode, fast);
             if (name.empty()) return {};  // as the interpreter: lowering emits nothing else
-            if (std::string error = call(name, {result_, sources_[0], sources_[1], sources_[2], u32(mask)});
+            if (std::string error = out_of_line(step)
+                                        ? call_shared(name, step.source_count, mask)
+                                        : call(name, {result_, sources_[0], sources_[1], sources_[2], u32(mask)});
                 !error.empty())
                 return error;
             break;
@@ -486,6 +543,9 @@ private:
     std::map<unsigned, llvm::Value*> defs_;  // def'd register -> its value as a module constant
     std::array<llvm::AllocaInst*, 3> sources_{};
     llvm::AllocaInst* result_ = nullptr;
+    std::array<llvm::AllocaInst*, 3> call_sources_{};  // the out-of-line kernels' (call_shared)
+    llvm::AllocaInst* call_result_ = nullptr;
+    std::vector<std::string> shared_kernels_;
     llvm::AllocaInst* temps_ = nullptr;  // [kTempCount x register]
 };
 
@@ -562,6 +622,51 @@ std::string optimize(llvm::Module& module, llvm::TargetMachine& machine) {
 
 std::atomic<uint64_t> next_shader{0};
 
+// The kernel bitcode, read lazily into a new module of `context`.
+llvm::Expected<std::unique_ptr<llvm::Module>> kernel_module(llvm::LLVMContext& context, const Host& host) {
+    const llvm::StringRef bitcode(reinterpret_cast<const char*>(detail::kKernelBitcode), detail::kKernelBitcodeSize);
+    auto parsed = llvm::getLazyBitcodeModule(llvm::MemoryBufferRef(bitcode, "sm2_jit_kernels"), context);
+    if (!parsed) return parsed.takeError();
+    (*parsed)->setDataLayout(host.jit->getDataLayout());
+    (*parsed)->setTargetTriple(host.jit->getTargetTriple().str());
+    return parsed;
+}
+
+// Adds the out-of-line copy of kernel `name` (Emitter::call_shared) to the main JITDylib, once
+// per process: the same bitcode and passes as an inlined one, so the same results. ORC
+// compiles it when the first routine that calls it is looked up (its compile time counts in
+// that routine's).
+std::string add_shared_kernel(Host& host, const std::string& name) {
+    std::lock_guard lock(host.shared_mutex);
+    if (host.shared_kernels.count(name) != 0) return {};
+    auto context = std::make_unique<llvm::LLVMContext>();
+    auto parsed = kernel_module(*context, host);
+    if (!parsed) return "cannot read the kernel bitcode: " + message(parsed.takeError());
+    std::unique_ptr<llvm::Module> module = std::move(*parsed);
+    llvm::Function* kernel = module->getFunction(name);
+    if (kernel == nullptr) return "the kernel bitcode has no " + name;
+    if (llvm::Error error = kernel->materialize()) return "cannot read a kernel: " + message(std::move(error));
+    kernel->setName(name + kSharedSuffix);
+    kernel->setLinkage(llvm::GlobalValue::ExternalLinkage);
+    kernel->setComdat(nullptr);
+    kernel->removeFnAttr(llvm::Attribute::NoInline);
+    kernel->removeFnAttr(llvm::Attribute::OptimizeNone);
+    kernel->addFnAttr("target-cpu", host.cpu);
+    kernel->addFnAttr("target-features", host.features);
+    kernel->removeFnAttr("tune-cpu");
+    if (std::string why = prepare_kernels(*module, {kernel}, host); !why.empty()) return why;
+    auto machine = thread_machine(*host.machine);
+    if (!machine) return "cannot create the target machine: " + message(machine.takeError());
+    if (std::string why = optimize(*module, **machine); !why.empty()) return why;
+    std::string problems;
+    llvm::raw_string_ostream problem_stream(problems);
+    if (llvm::verifyModule(*module, &problem_stream)) return "invalid module: " + problem_stream.str();
+    if (llvm::Error added = host.jit->addIRModule(llvm::orc::ThreadSafeModule(std::move(module), std::move(context))))
+        return message(std::move(added));
+    host.shared_kernels.insert(name);
+    return {};
+}
+
 }  // namespace
 
 struct CompiledShader::Code {
@@ -598,13 +703,10 @@ std::vector<std::shared_ptr<const CompiledShader>> compile_all(std::span<const E
     if (!jit.jit) return fail(jit.error);
 
     auto context = std::make_unique<llvm::LLVMContext>();
-    const llvm::StringRef bitcode(reinterpret_cast<const char*>(detail::kKernelBitcode), detail::kKernelBitcodeSize);
     // Lazily: only the kernels the shaders call are read (prepare_kernels).
-    auto parsed = llvm::getLazyBitcodeModule(llvm::MemoryBufferRef(bitcode, "sm2_jit_kernels"), *context);
+    auto parsed = kernel_module(*context, jit);
     if (!parsed) return fail("cannot read the kernel bitcode: " + message(parsed.takeError()));
     std::unique_ptr<llvm::Module> module = std::move(*parsed);
-    module->setDataLayout(jit.jit->getDataLayout());
-    module->setTargetTriple(jit.jit->getTargetTriple().str());
 
     std::vector<std::string> names;
     std::vector<llvm::Function*> shaders;
@@ -612,6 +714,8 @@ std::vector<std::shared_ptr<const CompiledShader>> compile_all(std::span<const E
         names.push_back("sm2_shader_" + std::to_string(next_shader++));
         Emitter emitter(*module, jit);
         if (std::string why = emitter.emit(*executable, names.back()); !why.empty()) return fail(why);
+        for (const std::string& kernel : emitter.shared_kernels())
+            if (std::string why = add_shared_kernel(jit, kernel); !why.empty()) return fail(why);
         shaders.push_back(module->getFunction(names.back()));
     }
     if (std::string why = prepare_kernels(*module, shaders, jit); !why.empty()) return fail(why);
