@@ -215,9 +215,9 @@ struct TextureSampler::BlockLevels {
     unsigned flat_bytes = 0;
     Context context;
     BlockFormat format;  // how texels decode (looked up once per prepare(), not per lookup)
-    // Every channel a UNORM field wider than 5 bits (A16B16G16R16; A8R8G8B8 under float
-    // filtering): the filter's instance for them decodes each tap inline, without
-    // block_channel()'s call and switch.
+    // Every channel a UNORM field, all wider than 5 bits (A16B16G16R16; A8R8G8B8 under float
+    // filtering) or one wider than 8 (A2B10G10R10): the filter's instance for them decodes each
+    // tap inline, without block_channel()'s call and switch.
     bool wide_unorm = false;
     // Every channel an 8-bit UNORM field of the first word or a constant (A8R8G8B8, X8R8G8B8,
     // A8B8G8R8, L8, A8L8, A8): the filter's instance for them has the fields' masks and
@@ -795,9 +795,15 @@ bool block_supported(const Context& c, BlockLevels& levels) {
     levels.format = *format;
     // (Fixed8 filtering sums fields of up to 8 bits exactly, without decoding taps: the generic
     // instance serves those; given to the wide one, bench_1024 ran 2-3% slower.)
-    levels.wide_unorm = std::all_of(format->begin(), format->end(), [&](const BlockChannel& ch) {
-        return ch.kind == BlockChannel::Kind::Unorm && ch.mask > 31u && !(c.fixed && ch.mask <= 0xFFu);
-    });
+    // A format with a field wider than 8 bits (A2B10G10R10's 2-bit alpha beside its 10-bit
+    // colour) takes it too: its quotient is correctly rounded for every width (unorm8::quotient),
+    // and the generic instance called block_channel() per tap and channel (scene 27's G-buffer).
+    const bool all_unorm = std::all_of(format->begin(), format->end(),
+                                       [](const BlockChannel& ch) { return ch.kind == BlockChannel::Kind::Unorm; });
+    levels.wide_unorm =
+        all_unorm && (std::all_of(format->begin(), format->end(),
+                                  [&](const BlockChannel& ch) { return ch.mask > 31u && !(c.fixed && ch.mask <= 0xFFu); }) ||
+                      std::any_of(format->begin(), format->end(), [](const BlockChannel& ch) { return ch.mask > 0xFFu; }));
     // Every channel a constant or a UNORM field of the first word whose mask passes `fits`.
     const auto fields_or_constants = [&](auto fits) {
         return std::all_of(format->begin(), format->end(), [&](const BlockChannel& ch) {
