@@ -408,15 +408,20 @@ private:
     std::string call(const std::string& name, std::vector<llvm::Value*> arguments, llvm::Value** result = nullptr) {
         llvm::Function* kernel = module_.getFunction(name);
         if (kernel == nullptr || kernel->isDeclaration()) return "the kernel bitcode has no " + name;
-        if (kernel->arg_size() != arguments.size()) return "kernel " + name + " takes other arguments";
+        return call(kernel, std::move(arguments), result);
+    }
+
+    // Calls `function` (a kernel, or the declaration of a shared one) with `arguments`.
+    std::string call(llvm::Function* function, std::vector<llvm::Value*> arguments, llvm::Value** result = nullptr) {
+        const auto mismatch = [&] { return "kernel " + function->getName().str() + " takes other arguments"; };
+        if (function->arg_size() != arguments.size()) return mismatch();
         for (unsigned i = 0; i < arguments.size(); ++i) {
-            llvm::Type* wanted = kernel->getArg(i)->getType();
+            llvm::Type* wanted = function->getArg(i)->getType();
             if (arguments[i]->getType() == wanted) continue;
-            if (!arguments[i]->getType()->isPointerTy() || !wanted->isPointerTy())
-                return "kernel " + name + " takes other arguments";
+            if (!arguments[i]->getType()->isPointerTy() || !wanted->isPointerTy()) return mismatch();
             arguments[i] = builder_->CreatePointerCast(arguments[i], wanted);
         }
-        llvm::Value* value = builder_->CreateCall(kernel, arguments);
+        llvm::Value* value = builder_->CreateCall(function, arguments);
         if (result != nullptr) *result = value;
         return {};
     }
@@ -438,12 +443,10 @@ private:
         const llvm::MaybeAlign align(64);
         for (unsigned k = 0; k < source_count; ++k)
             builder_->CreateMemCpy(call_sources_[k], align, sources_[k], align, bytes);
-        std::vector<llvm::Value*> arguments{call_result_, call_sources_[0], call_sources_[1], call_sources_[2],
-                                            u32(mask)};
-        for (unsigned i = 0; i < arguments.size(); ++i)
-            if (arguments[i]->getType() != shared->getArg(i)->getType())
-                arguments[i] = builder_->CreatePointerCast(arguments[i], shared->getArg(i)->getType());
-        builder_->CreateCall(shared, arguments);
+        if (std::string error =
+                call(shared, {call_result_, call_sources_[0], call_sources_[1], call_sources_[2], u32(mask)});
+            !error.empty())
+            return error;
         builder_->CreateMemCpy(result_, align, call_result_, align, bytes);
         if (std::find(shared_kernels_.begin(), shared_kernels_.end(), name) == shared_kernels_.end())
             shared_kernels_.push_back(name);
@@ -549,6 +552,17 @@ private:
     llvm::AllocaInst* temps_ = nullptr;  // [kTempCount x register]
 };
 
+// Makes `function`, a kernel of the bitcode (compiled there for x86-64-v4), compile for the
+// host CPU, without a comdat and without noinline or optnone; the caller sets its linkage.
+void target_host(llvm::Function& function, const Host& host) {
+    function.setComdat(nullptr);
+    function.removeFnAttr(llvm::Attribute::NoInline);
+    function.removeFnAttr(llvm::Attribute::OptimizeNone);
+    function.addFnAttr("target-cpu", host.cpu);
+    function.addFnAttr("target-features", host.features);
+    function.removeFnAttr("tune-cpu");
+}
+
 // Reads the bodies of the kernels the shader calls (the module was loaded lazily), drops the
 // others, and makes the kernels private to the module, always inlined, compiled for the host.
 std::string prepare_kernels(llvm::Module& module, const std::vector<llvm::Function*>& shaders, const Host& host) {
@@ -573,13 +587,8 @@ std::string prepare_kernels(llvm::Module& module, const std::vector<llvm::Functi
     for (llvm::Function& function : module) {
         if (std::find(shaders.begin(), shaders.end(), &function) != shaders.end() || function.isDeclaration()) continue;
         function.setLinkage(llvm::GlobalValue::InternalLinkage);
-        function.setComdat(nullptr);
-        function.removeFnAttr(llvm::Attribute::NoInline);
-        function.removeFnAttr(llvm::Attribute::OptimizeNone);
+        target_host(function, host);
         function.addFnAttr(llvm::Attribute::AlwaysInline);
-        function.addFnAttr("target-cpu", host.cpu);
-        function.addFnAttr("target-features", host.features);
-        function.removeFnAttr("tune-cpu");
     }
     for (llvm::GlobalVariable& variable : module.globals()) {
         if (variable.isDeclaration()) continue;
@@ -622,6 +631,17 @@ std::string optimize(llvm::Module& module, llvm::TargetMachine& machine) {
 
 std::atomic<uint64_t> next_shader{0};
 
+// optimize() with this thread's target machine, then LLVM's verifier.
+std::string optimize_and_verify(llvm::Module& module, const Host& host) {
+    auto machine = thread_machine(*host.machine);
+    if (!machine) return "cannot create the target machine: " + message(machine.takeError());
+    if (std::string why = optimize(module, **machine); !why.empty()) return why;
+    std::string problems;
+    llvm::raw_string_ostream problem_stream(problems);
+    if (llvm::verifyModule(module, &problem_stream)) return "invalid module: " + problem_stream.str();
+    return {};
+}
+
 // The kernel bitcode, read lazily into a new module of `context`.
 llvm::Expected<std::unique_ptr<llvm::Module>> kernel_module(llvm::LLVMContext& context, const Host& host) {
     const llvm::StringRef bitcode(reinterpret_cast<const char*>(detail::kKernelBitcode), detail::kKernelBitcodeSize);
@@ -648,19 +668,9 @@ std::string add_shared_kernel(Host& host, const std::string& name) {
     if (llvm::Error error = kernel->materialize()) return "cannot read a kernel: " + message(std::move(error));
     kernel->setName(name + kSharedSuffix);
     kernel->setLinkage(llvm::GlobalValue::ExternalLinkage);
-    kernel->setComdat(nullptr);
-    kernel->removeFnAttr(llvm::Attribute::NoInline);
-    kernel->removeFnAttr(llvm::Attribute::OptimizeNone);
-    kernel->addFnAttr("target-cpu", host.cpu);
-    kernel->addFnAttr("target-features", host.features);
-    kernel->removeFnAttr("tune-cpu");
+    target_host(*kernel, host);
     if (std::string why = prepare_kernels(*module, {kernel}, host); !why.empty()) return why;
-    auto machine = thread_machine(*host.machine);
-    if (!machine) return "cannot create the target machine: " + message(machine.takeError());
-    if (std::string why = optimize(*module, **machine); !why.empty()) return why;
-    std::string problems;
-    llvm::raw_string_ostream problem_stream(problems);
-    if (llvm::verifyModule(*module, &problem_stream)) return "invalid module: " + problem_stream.str();
+    if (std::string why = optimize_and_verify(*module, host); !why.empty()) return why;
     if (llvm::Error added = host.jit->addIRModule(llvm::orc::ThreadSafeModule(std::move(module), std::move(context))))
         return message(std::move(added));
     host.shared_kernels.insert(name);
@@ -720,12 +730,7 @@ std::vector<std::shared_ptr<const CompiledShader>> compile_all(std::span<const E
     }
     if (std::string why = prepare_kernels(*module, shaders, jit); !why.empty()) return fail(why);
 
-    auto machine = thread_machine(*jit.machine);
-    if (!machine) return fail("cannot create the target machine: " + message(machine.takeError()));
-    if (std::string why = optimize(*module, **machine); !why.empty()) return fail(why);
-    std::string problems;
-    llvm::raw_string_ostream problem_stream(problems);
-    if (llvm::verifyModule(*module, &problem_stream)) return fail("invalid module: " + problem_stream.str());
+    if (std::string why = optimize_and_verify(*module, jit); !why.empty()) return fail(why);
 
     auto code = std::make_shared<CompiledShader::Code>();
     code->tracker = jit.jit->getMainJITDylib().createResourceTracker();
