@@ -55,33 +55,23 @@ inline Real rsq(Real x) {
     return a == Real(1) ? Real(1) : reciprocal_root;
 }
 
-// --- exponential and logarithm ---------------------------------------------------------------
-// exp: 2^x; exp(-inf) = 0, exp(+inf) = +inf, NaN stays NaN. expp (vs_2_0) is the same value
-// (the docs only ask for 10 bits).
-template <typename Real>
-inline Real exp2(Real x) {
-    return std::exp2(x);
-}
+// --- exponential, logarithm and power ---------------------------------------------------------
+// On floats, exact exp, log and pow are the engine's own evaluation in double rather than the C
+// library's: one rounding to float of a result good to about 2^-50 relative, so correctly
+// rounded on every input measured (docs/numerics.md; glibc's exp2f, log2f and powf are not, on a
+// few inputs in ten thousand). Branch-free and without 64-bit integer conversions (which have
+// no AVX2 instruction), so the lane loops vectorize and compiled code runs 16 lanes at once.
+// tests/emu/transcendentals_test.cpp holds the special values and a sample of the accuracy.
 
-// log: log2(|x|); log of zero (either sign) = -inf (hardware; the docs' pseudo-code says
-// -FLT_MAX); log(inf) = inf; NaN stays NaN. logp (vs_2_0) is the same value.
-template <typename Real>
-inline Real log2(Real x) {
-    return std::log2(std::fabs(x));
-}
-
-// pow: |base| ^ exponent with IEEE pow's special cases on the absolute base: 0^0 = 1,
-// 0^(+y) = 0, 0^(-y) = +inf, x^0 = 1, 1^y = 1 (even for NaN y).
-// On floats it is computed here rather than by the C library: in double, log2|base| as the
-// exponent plus the 2 atanh series of the mantissa (to s^19), times the exponent, then 2^t as
-// an integer power plus the e^(f ln 2) series (to degree 12), rounded once to float. Branch-free,
-// so the lane loops vectorize; measured against long double powl over 5 * 10^7 inputs, every
-// result in the normal range within 0.5 ulp (correctly rounded; glibc's powf is not in 0.04% of
-// them). tests/emu/numerics_test.cpp holds the special values and a sample of the accuracy.
-inline float pow_float(float base, float exponent) {
-    const float a = std::fabs(base);
+// log2(a) in double for a positive float a: the exponent of a's double plus log2 of its
+// mantissa m in [sqrt(1/2), sqrt(2)), ln m = 2 atanh(s), s = (m - 1) / (m + 1), by its series to
+// s^19. a = 0 gives -1023 and a = inf 1024 (the callers take those apart); NaN gives NaN or
+// anything (likewise).
+inline double log2_in_double(float a) {
     const uint64_t bits = std::bit_cast<uint64_t>(static_cast<double>(a));
-    double e = static_cast<double>(static_cast<int64_t>(bits >> 52) - 1023);
+    // The biased exponent read as a double through 2^52 + k: exact, and a shift and an or
+    // where converting a 64-bit integer would be a scalar instruction per lane.
+    double e = std::bit_cast<double>((bits >> 52) | 0x4330000000000000ull) - (0x1p52 + 1023.0);
     double m = std::bit_cast<double>((bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull);
     const bool high = m > 1.4142135623730951;
     m = high ? m * 0.5 : m;
@@ -98,14 +88,21 @@ inline float pow_float(float base, float exponent) {
     p = p * s2 + 2.0 / 5.0;
     p = p * s2 + 2.0 / 3.0;
     p = p * s2 + 2.0;
-    const double log2a = e + (p * s) * 1.4426950408889634;
-    double t = static_cast<double>(exponent) * log2a;
-    // (A NaN t, from a NaN operand or 0 * inf, has its result chosen by the special cases
-    // below; 0 keeps the integer conversion defined.)
+    return e + (p * s) * 1.4426950408889634;
+}
+
+// 2^t rounded once to float: t = n + f with n an integer and |f| <= 1/2, 2^f = e^(f ln 2) by its
+// series to degree 12, 2^n built in the exponent field. t is clamped to [-200, 200] (float
+// results 0 and inf beyond); a NaN t gives 1 (the callers choose NaN results themselves).
+inline float exp2_rounded_to_float(double t) {
     t = t == t ? t : 0.0;
     t = t < -200.0 ? -200.0 : t;
     t = t > 200.0 ? 200.0 : t;
-    const double n = (t + 6755399441055744.0) - 6755399441055744.0;
+    // n = t rounded to an integer by adding 1.5 * 2^52: the sum's low bits are n in two's
+    // complement, so 2^n's bits are (bits(sum) + 1023) << 52 (the sum's own exponent field
+    // shifts out), again without a 64-bit integer conversion.
+    const double shifted = t + 6755399441055744.0;
+    const double n = shifted - 6755399441055744.0;
     const double x = (t - n) * 0.6931471805599453;
     double q = 1.0 / 479001600.0;
     q = q * x + 1.0 / 39916800.0;
@@ -120,8 +117,46 @@ inline float pow_float(float base, float exponent) {
     q = q * x + 0.5;
     q = q * x + 1.0;
     q = q * x + 1.0;
-    const double scale = std::bit_cast<double>(static_cast<uint64_t>(static_cast<int64_t>(n) + 1023) << 52);
-    float result = static_cast<float>(q * scale);
+    const double scale = std::bit_cast<double>((std::bit_cast<uint64_t>(shifted) + 1023u) << 52);
+    return static_cast<float>(q * scale);
+}
+
+// exp: 2^x; exp(-inf) = 0, exp(+inf) = +inf, NaN stays NaN. expp (vs_2_0) is the same value
+// (the docs only ask for 10 bits).
+inline float exp2_float(float x) {
+    const float result = exp2_rounded_to_float(static_cast<double>(x));
+    return x == x ? result : x;
+}
+template <typename Real>
+inline Real exp2(Real x) {
+    if constexpr (std::is_same_v<Real, float>) return exp2_float(x);
+    else return std::exp2(x);
+}
+
+// log: log2(|x|); log of zero (either sign) = -inf (hardware; the docs' pseudo-code says
+// -FLT_MAX); log(inf) = inf; NaN stays NaN. logp (vs_2_0) is the same value.
+inline float log2_float(float x) {
+    const float a = std::fabs(x);
+    const float result = static_cast<float>(log2_in_double(a));
+    const float special = a == 0.0f ? -kInfinity<float> : a;  // 0 -> -inf; inf, NaN stay
+    const bool not_finite_or_zero = (a == 0.0f) | (a == kInfinity<float>) | (a != a);
+    return not_finite_or_zero ? special : result;
+}
+template <typename Real>
+inline Real log2(Real x) {
+    if constexpr (std::is_same_v<Real, float>) return log2_float(x);
+    else return std::log2(std::fabs(x));
+}
+
+// pow: |base| ^ exponent with IEEE pow's special cases on the absolute base: 0^0 = 1,
+// 0^(+y) = 0, 0^(-y) = +inf, x^0 = 1, 1^y = 1 (even for NaN y). On floats: 2^(exponent *
+// log2|base|) with the product in double, rounded once; measured against long double powl over
+// 5 * 10^7 inputs, every result in the normal range within 0.5 ulp.
+inline float pow_float(float base, float exponent) {
+    const float a = std::fabs(base);
+    // (A NaN product, from a NaN operand or 0 * inf, has its result chosen by the special
+    // cases below.)
+    float result = exp2_rounded_to_float(static_cast<double>(exponent) * log2_in_double(a));
     const float inf = std::numeric_limits<float>::infinity();
     result = a == 0.0f ? (exponent > 0.0f ? 0.0f : inf) : result;
     result = a == inf ? (exponent > 0.0f ? inf : 0.0f) : result;

@@ -453,12 +453,16 @@ private:
         return {};
     }
 
-    // Whether the step's kernel is called out of line: exact pow and lit, whose vectorized
-    // series are the larger part of the code of the routines that use them and cost the code
-    // generator several times a call's work. pow with a def'd exponent stays inline: its
-    // integer test folds to the squarings (step_kernels.h).
-    bool out_of_line(const Step& step) const {
+    // Whether the step's kernel is called out of line: exact exp, log, pow and lit, whose
+    // vectorized series in double are the larger part of the code of the routines that use
+    // them and cost the code generator several times a call's work. pow with a def'd exponent
+    // stays inline: its integer test folds to the squarings (step_kernels.h). The fast
+    // transcendentals are short float code and stay inline.
+    bool out_of_line(const Step& step, bool fast) const {
         if (step.opcode == Opcode::Lit) return true;
+        if (step.opcode == Opcode::Exp || step.opcode == Opcode::ExpP || step.opcode == Opcode::Log ||
+            step.opcode == Opcode::LogP)
+            return !fast;
         if (step.opcode != Opcode::Pow) return false;
         const StepSource& exponent = step.sources[1];
         return !(exponent.kind == OperandKind::Constant && defs_.count(exponent.index) != 0);
@@ -518,7 +522,7 @@ private:
         default: {
             const std::string name = kernel_name(step.opcode, fast);
             if (name.empty()) return {};  // as the interpreter: lowering emits nothing else
-            if (std::string error = out_of_line(step)
+            if (std::string error = out_of_line(step, fast)
                                         ? call_shared(name, step.source_count, mask)
                                         : call(name, {result_, sources_[0], sources_[1], sources_[2], u32(mask)});
                 !error.empty())
