@@ -236,9 +236,11 @@ inline void compute(Vector<Real>& result, const Vector<Real>& a, const Vector<Re
     } else if constexpr (op == Opcode::Log || op == Opcode::LogP) {
         scalar(result, mask, [&](unsigned l) { return log2<Real, fast>(a[0][l]); });
     } else if constexpr (op == Opcode::Pow) {
-        if constexpr (std::is_same_v<Real, float> && !fast) {
+        if constexpr (std::is_same_v<Real, float>) {
             // A constant integer exponent: the same correctly rounded result as pow_float() by
-            // repeated squaring, a few multiplications instead of its two series.
+            // repeated squaring, a few multiplications instead of its two series. Fast mode
+            // takes it too: it is cheaper than fast's log2 and exp2 and more accurate (fast mode
+            // had made lighting shaders slower than exact: docs/numerics.md).
             if (const unsigned n = num::uniform_integer_exponent(b[0]); n != 0) {
                 Lanes<Real> value;
                 if (num::pow_float_integer(a[0], n, value)) {

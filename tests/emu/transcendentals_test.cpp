@@ -218,6 +218,23 @@ TEST(ExactTranscendentals, PowWithOneIntegerExponentPerBatchMatchesTheGeneralPat
     EXPECT_LE(worst, 0.5 + 0x1p-40);
 }
 
+// Fast mode takes the same squaring for a batch of one integer exponent (a specular power):
+// its results there are exact mode's correctly rounded ones, not fast pow's 15+ bits.
+TEST(FastTranscendentals, PowWithOneIntegerExponentPerBatchIsExactModes) {
+    std::mt19937 rng(22);
+    std::uniform_real_distribution<float> unit(0.0f, 1.5f);
+    std::vector<float> bases(64 * emu::kBatchLanes), exponents(bases.size());
+    for (size_t k = 0; k < bases.size(); ++k) {
+        bases[k] = unit(rng);
+        exponents[k] = static_cast<float>(1 + (k / emu::kBatchLanes) % 64);
+    }
+    const auto fast = evaluate(Opcode::Pow, bases, exponents, emu::Transcendentals::Fast);
+    const auto exact = evaluate(Opcode::Pow, bases, exponents, emu::Transcendentals::Exact);
+    size_t differ = 0;
+    for (size_t k = 0; k < bases.size(); ++k) differ += same_bits(fast[k], exact[k]) ? 0u : 1u;
+    EXPECT_EQ(differ, 0u);
+}
+
 // Special values in a batch of one integer exponent (the first 16 lanes: every rounding
 // certain), and the lanes whose rounding squaring cannot settle, which send their batch the
 // general way (the second batch): NaN, and an exact power on a rounding tie ((2^-75)^2 =
