@@ -135,12 +135,17 @@ inline Real exp2(Real x) {
 
 // log: log2(|x|); log of zero (either sign) = -inf (hardware; the docs' pseudo-code says
 // -FLT_MAX); log(inf) = inf; NaN stays NaN. logp (vs_2_0) is the same value.
+// log's special values for a = |x|, around `finite`, the evaluation's result for a finite
+// nonzero a: 0 -> -inf; inf and NaN stay. Selects only, so the lane loops vectorize (exact and
+// fast log both).
+inline float log2_special_values(float a, float finite) {
+    const float special = a == 0.0f ? -kInfinity<float> : a;
+    const bool not_finite_or_zero = (a == 0.0f) | (a == kInfinity<float>) | (a != a);
+    return not_finite_or_zero ? special : finite;
+}
 inline float log2_float(float x) {
     const float a = std::fabs(x);
-    const float result = static_cast<float>(log2_in_double(a));
-    const float special = a == 0.0f ? -kInfinity<float> : a;  // 0 -> -inf; inf, NaN stay
-    const bool not_finite_or_zero = (a == 0.0f) | (a == kInfinity<float>) | (a != a);
-    return not_finite_or_zero ? special : result;
+    return log2_special_values(a, static_cast<float>(log2_in_double(a)));
 }
 template <typename Real>
 inline Real log2(Real x) {
@@ -349,9 +354,7 @@ inline float log2(float x) {
     p = p * s2 + 2.0f / 3.0f;
     p = p * s2 + 2.0f;
     const float result = exponent + (p * s) * 1.44269504088896341f;  // ln m / ln 2
-    const float special = a == 0.0f ? -kInfinity<float> : a;        // 0 -> -inf; inf, NaN stay
-    const bool not_finite_or_zero = (a == 0.0f) | (a == kInfinity<float>) | (a != a);
-    return not_finite_or_zero ? special : result;
+    return log2_special_values(a, result);
 }
 
 // |base|^exponent = 2^(exponent * log2|base|) with the special cases of the exact pow: x^0 = 1

@@ -456,8 +456,9 @@ private:
     // Whether the step's kernel is called out of line: exact exp, log, pow and lit, whose
     // vectorized series in double are the larger part of the code of the routines that use
     // them and cost the code generator several times a call's work. pow with a def'd exponent
-    // stays inline: its integer test folds to the squarings (step_kernels.h). The fast
-    // transcendentals are short float code and stay inline.
+    // stays inline: its integer test folds to the squarings (step_kernels.h). Fast exp and log
+    // are short float code and stay inline; fast pow and lit go out of line as exact ones do
+    // (fast pow keeps the squarings in double for a batch of one integer exponent).
     bool out_of_line(const Step& step, bool fast) const {
         if (step.opcode == Opcode::Lit) return true;
         if (step.opcode == Opcode::Exp || step.opcode == Opcode::ExpP || step.opcode == Opcode::Log ||
