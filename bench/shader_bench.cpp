@@ -1,6 +1,7 @@
 // Shader engine throughput: lanes x executed instructions per second for representative shaders
 // in every precision mode and both transcendental modes, in the interpreter and (jit/...) in the
-// JIT's compiled code, which runs every mode but fp64 (the reference stays interpreted).
+// JIT's compiled code, which runs every mode but fp64 (the reference stays interpreted); and
+// (jit/compile/...) the JIT's compile time per routine for the same shaders.
 // Reported, never asserted.
 //   build/release/bench/shader_bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
@@ -195,10 +196,43 @@ void transcendental_benchmark(benchmark::State& state, const std::string& instru
     run_engine(state, *lowered.executable, jit, nullptr, mode == emu::Transcendentals::Fast ? "fast" : "exact");
 }
 
+// The JIT's compile time of one routine: lowering once, then emu::jit::compile() (IR, LLVM's
+// passes, machine code) every iteration, its code freed with the routine. The process's
+// one-time costs (LLVM's first use, the out-of-line kernels) fall in the warm-up iteration.
+void compile_benchmark(benchmark::State& state, const std::string& file, const Mode& mode, const emu::StaticFlowConstants& flow) {
+    if (!emu::jit::available()) {
+        state.SkipWithError("no JIT in this build");
+        return;
+    }
+    emu::LoweringOptions options;
+    options.precision.precision = mode.precision;
+    options.precision.partial_precision_fp16 = mode.pp_fp16;
+    options.precision.transcendentals = mode.transcendentals;
+    const auto executable = lower_sample(state, file, flow, options);
+    if (!executable) return;
+    std::string error;
+    if (!emu::jit::compile(*executable, &error)) {
+        state.SkipWithError(error.c_str());
+        return;
+    }
+    for (auto _ : state) benchmark::DoNotOptimize(emu::jit::compile(*executable, &error));
+    state.SetLabel(std::to_string(executable->steps().size()) + " steps");
+}
+
 void register_all() {
     emu::StaticFlowConstants four_lights;
     four_lights.integers[0] = {4, 16, 2, 0};
     const emu::StaticFlowConstants none;
+    for (const Mode& mode : kModes) {
+        if (mode.precision == emu::Precision::Fp64) continue;
+        const std::string label = mode_label(mode);
+        for (const char* file : {"phong_lights.vs.asm", "textured_phong.ps.asm", "alu64.ps.asm"})
+            benchmark::RegisterBenchmark((std::string("jit/compile/") + file + "/" + label).c_str(),
+                                         [mode, file, four_lights, none](benchmark::State& s) {
+                                             compile_benchmark(s, file, mode, std::string(file) == "phong_lights.vs.asm" ? four_lights : none);
+                                         })
+                ->Unit(benchmark::kMillisecond);
+    }
     for (const bool jit : {false, true}) {
         const std::string engine = jit ? "jit/" : "";
         for (const char* instruction : {"exp", "log", "pow", "sincos"})
