@@ -606,6 +606,55 @@ TEST(SamplerBlockPath, PointLookupsOfScreenAlignedBatchesReadTheirTexelRows) {
     }
 }
 
+// Bilinear lookups of 8x2-pixel batches at pixel steps of 0.5 to 2.5 texels, forwards and
+// mirrored, screen-aligned and sheared (v growing along the batch's rows too), at every column
+// and row of the level and past its edges: the AVX-512 instance reads
+// the texel pairs of such batches from a window of three rows (block_window_pairs), clipped at
+// the level's right edge and last rows, and the others by gathers; both must give the per-lane
+// path's bits.
+TEST(SamplerBlockPath, BilinearLookupsOfScreenAlignedBatchesReadTheirTexelWindow) {
+    std::mt19937 rng(20261202);
+    const Texture texture = random_texture(rng, Format::A8R8G8B8, 64, 32, 1);  // powers of two: WRAP too
+    for (const bool addresses64 : {false, true})
+        for (const bool avx2 : forced_avx2_choices()) {
+            TextureSampler block, lanes;
+            block.set_texture(0, &texture);
+            block.set_block_64bit_addresses(addresses64);
+            block.set_block_avx2(avx2);
+            lanes.set_texture(0, &texture);
+            lanes.set_block_path(false);
+            SamplerState state;
+            state.mag_filter = state.min_filter = TextureFilter::Linear;
+            state.mip_filter = TextureFilter::None;
+            for (const TextureAddress mode : {TextureAddress::Clamp, TextureAddress::Wrap}) {
+                state.address_u = state.address_v = mode;
+                for (TextureSampler* s : {&block, &lanes}) s->set_state(0, state);
+                block.prepare();
+                if (cpu_runs_block_path()) {
+                    ASSERT_TRUE(block.block_path_applies(0));
+                }
+                for (const float step : {0.5f, 1.0f, 1.25f, 1.8f, -1.0f, 2.5f})
+                    for (const float shear : {0.0f, 0.3f})
+                    for (int y0 = -3; y0 < 34; y0 += 3)
+                        for (int x0 = -3; x0 < 66; ++x0) {
+                            std::array<emu::FloatLanes, 4> coords{};
+                            // A sub-texel offset per batch, so that the taps' weights vary.
+                            const float fraction = static_cast<float>(rng() % 256) / 256.0f;
+                            for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+                                const float px = static_cast<float>(2 * (l / 4) + (l & 1u)), py = static_cast<float>((l >> 1) & 1u);
+                                coords[0][l] = (static_cast<float>(x0) + fraction + px * step) / 64.0f;
+                                coords[1][l] = (static_cast<float>(y0) + fraction + py * std::abs(step) + px * shear) / 32.0f;
+                            }
+                            emu::TextureRequest request;
+                            request.coordinates = &coords;
+                            ASSERT_TRUE(same_texels(block, lanes, request, true))
+                                << "step " << step << " shear " << shear << " at " << x0 << ", " << y0 << (mode == TextureAddress::Wrap ? " WRAP" : " CLAMP")
+                                << (addresses64 ? " (64-bit addresses)" : "") << (avx2 ? " (AVX2 instance)" : "");
+                        }
+            }
+        }
+}
+
 // A texture of `count` texels, `width` a row, texel v holding texel(v) in its bytes, POINT-
 // sampled at every texel centre (the block path's instances where the CPU runs one): channel `channel`
 // of texel v must read with the bits expected(v).
