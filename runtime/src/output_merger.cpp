@@ -332,6 +332,14 @@ bool additive(const BlendState& b) {
            b.dst_alpha == Blend::One && b.op_alpha == BlendOp::Add;
 }
 
+// The blending a merge kernel instance is compiled for: Any tests the state per call; the others
+// hold it as a compile-time fact (merge_unorm8_block's 4-byte 8-bit instances), so that their
+// code carries no other blend and keeps every value in registers.
+enum class KernelBlend { Any, Off, SourceOver, Additive };
+KernelBlend kernel_blend(const BlendState& b) {
+    return !b.enable ? KernelBlend::Off : source_over(b) ? KernelBlend::SourceOver : additive(b) ? KernelBlend::Additive : KernelBlend::Any;
+}
+
 
 }  // namespace
 
@@ -552,7 +560,14 @@ emu::LaneMask merge(const OutputMergerState& s, const RenderTargets& targets, co
                 run = run && lanes.x[4 * q] == lanes.x[0] + static_cast<int32_t>(2 * q) && lanes.y[4 * q] == lanes.y[0];
             const auto run_kernel = [&](auto kernel) { kernel(s.blend, fmt, *surface, mask, src, lanes, run, write); };
             if (path == TargetPath::Unorm8Block8) avx512_block ? run_kernel(avx512::merge_unorm8_block<2, false>) : run_kernel(avx2::merge_unorm8_block<2, false>);
-            else if (target.bytes) avx512_block ? run_kernel(avx512::merge_unorm8_block<1, true>) : run_kernel(avx2::merge_unorm8_block<1, true>);
+            else if (target.bytes) {
+                switch (kernel_blend(s.blend)) {
+                case KernelBlend::Off: avx512_block ? run_kernel(avx512::merge_unorm8_block<1, true, KernelBlend::Off>) : run_kernel(avx2::merge_unorm8_block<1, true, KernelBlend::Off>); break;
+                case KernelBlend::SourceOver: avx512_block ? run_kernel(avx512::merge_unorm8_block<1, true, KernelBlend::SourceOver>) : run_kernel(avx2::merge_unorm8_block<1, true, KernelBlend::SourceOver>); break;
+                case KernelBlend::Additive: avx512_block ? run_kernel(avx512::merge_unorm8_block<1, true, KernelBlend::Additive>) : run_kernel(avx2::merge_unorm8_block<1, true, KernelBlend::Additive>); break;
+                case KernelBlend::Any: avx512_block ? run_kernel(avx512::merge_unorm8_block<1, true>) : run_kernel(avx2::merge_unorm8_block<1, true>); break;
+                }
+            }
             else avx512_block ? run_kernel(avx512::merge_unorm8_block<1, false>) : run_kernel(avx2::merge_unorm8_block<1, false>);
             continue;
         }
