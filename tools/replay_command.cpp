@@ -86,7 +86,7 @@ struct NumericCliOptions {
                        "Shader arithmetic: fp32 (default), fp24 (ps results as s16e7), fp16 (fp24 and _pp as s10e5); "
                        "fp64, the reference of sm2 run, is named but draws do not run it")
             ->check(CLI::IsMember({"fp32", "fp24", "fp16", "fp64"}));
-        cmd.add_option("--transcendentals", transcendentals, "exact (libm, default) or fast")
+        cmd.add_option("--transcendentals", transcendentals, "exact (correctly rounded exp, log and pow; default) or fast")
             ->check(CLI::IsMember({"exact", "fast"}));
         cmd.add_option("--filter", filter, "Filter weights: fixed8 (8-bit, as hardware; default) or exact")
             ->check(CLI::IsMember({"fixed8", "exact"}));

@@ -425,7 +425,7 @@ void add_run_command(CLI::App& app, int& status) {
                     "results rounded to s10e5), fp64 (reference)")
         ->check(CLI::IsMember({"fp32", "fp24", "fp16", "fp64"}));
     cmd->add_option("--transcendentals", o->transcendentals,
-                    "exact (libm, default) or fast (documented minimum precision)")
+                    "exact (correctly rounded exp, log and pow; default) or fast (documented minimum precision)")
         ->check(CLI::IsMember({"exact", "fast"}));
     cmd->add_option("--engine", o->engine,
                     "jit (default where the build has one: native code, the same results) or interpreter (the "
