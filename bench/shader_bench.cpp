@@ -132,13 +132,18 @@ void run_engine(benchmark::State& state, const emu::Executable& executable, bool
     run<emu::Batch>(state, executable, [&](emu::Batch& batch) { compiled->run(constants, batch, sampler); });
 }
 
-void shader_benchmark(benchmark::State& state, const std::string& file, const Mode& mode,
-                      const emu::StaticFlowConstants& flow, bool jit) {
+// The lowering options of `mode`.
+emu::LoweringOptions lowering_options(const Mode& mode) {
     emu::LoweringOptions options;
     options.precision.precision = mode.precision;
     options.precision.partial_precision_fp16 = mode.pp_fp16;
     options.precision.transcendentals = mode.transcendentals;
-    const auto executable = lower_sample(state, file, flow, options);
+    return options;
+}
+
+void shader_benchmark(benchmark::State& state, const std::string& file, const Mode& mode,
+                      const emu::StaticFlowConstants& flow, bool jit) {
+    const auto executable = lower_sample(state, file, flow, lowering_options(mode));
     if (!executable) return;
     CheckerSampler sampler;
     run_engine(state, *executable, jit, &sampler, mode_label(mode));
@@ -204,11 +209,7 @@ void compile_benchmark(benchmark::State& state, const std::string& file, const M
         state.SkipWithError("no JIT in this build");
         return;
     }
-    emu::LoweringOptions options;
-    options.precision.precision = mode.precision;
-    options.precision.partial_precision_fp16 = mode.pp_fp16;
-    options.precision.transcendentals = mode.transcendentals;
-    const auto executable = lower_sample(state, file, flow, options);
+    const auto executable = lower_sample(state, file, flow, lowering_options(mode));
     if (!executable) return;
     std::string error;
     if (!emu::jit::compile(*executable, &error)) {

@@ -10,6 +10,7 @@
 #include <iterator>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "sm2/runtime/sampler.h"
@@ -559,6 +560,38 @@ TEST(SamplerBlockPath, BilinearCentreOfA2x2Texture) {
     }
 }
 
+// Calls check(block, lanes, label) for `texture` sampled at stage 0 with `filter` as MIN and MAG
+// filter (no mip), under CLAMP and WRAP, with 32-bit offsets and with 64-bit addresses, in each
+// instance the CPU runs: `block` on the block path, `lanes` on the per-lane path (the
+// reference), `label` naming the set-up for a failure's message.
+template <typename Check>
+void for_each_level_setup(const Texture& texture, TextureFilter filter, Check&& check) {
+    for (const bool addresses64 : {false, true})
+        for (const bool avx2 : forced_avx2_choices()) {
+            TextureSampler block, lanes;
+            block.set_texture(0, &texture);
+            block.set_block_64bit_addresses(addresses64);
+            block.set_block_avx2(avx2);
+            lanes.set_texture(0, &texture);
+            lanes.set_block_path(false);
+            SamplerState state;
+            state.mag_filter = state.min_filter = filter;
+            state.mip_filter = TextureFilter::None;
+            for (const TextureAddress mode : {TextureAddress::Clamp, TextureAddress::Wrap}) {
+                state.address_u = state.address_v = mode;
+                for (TextureSampler* s : {&block, &lanes}) s->set_state(0, state);
+                block.prepare();
+                if (cpu_runs_block_path()) {
+                    ASSERT_TRUE(block.block_path_applies(0));
+                }
+                const std::string label = std::string(mode == TextureAddress::Wrap ? "WRAP" : "CLAMP") +
+                                          (addresses64 ? " (64-bit addresses)" : "") + (avx2 ? " (AVX2 instance)" : "");
+                check(block, lanes, label);
+                if (::testing::Test::HasFatalFailure()) return;
+            }
+        }
+}
+
 // A screen-space pass reads one texel a pixel: POINT lookups at the texel centres of batches of
 // 4 quads side by side, whose 16 texels the block path reads as two runs of 8 from the rows of
 // the level where they lie in it (and by a gather where they do not: at the right and bottom
@@ -568,41 +601,22 @@ TEST(SamplerBlockPath, PointLookupsOfScreenAlignedBatchesReadTheirTexelRows) {
     std::mt19937 rng(20261129);
     for (const Format format : {Format::A8R8G8B8, Format::R32F, Format::A2B10G10R10}) {
         const Texture texture = random_texture(rng, format, 64, 32, 1);  // powers of two: WRAP too
-        for (const bool addresses64 : {false, true})
-        for (const bool avx2 : forced_avx2_choices()) {
-            TextureSampler block, lanes;
-            block.set_texture(0, &texture);
-            block.set_block_64bit_addresses(addresses64);
-            block.set_block_avx2(avx2);
-            lanes.set_texture(0, &texture);
-            lanes.set_block_path(false);
-            SamplerState state;
-            state.mag_filter = state.min_filter = TextureFilter::Point;
-            state.mip_filter = TextureFilter::None;
-            for (const TextureAddress mode : {TextureAddress::Clamp, TextureAddress::Wrap}) {
-                state.address_u = state.address_v = mode;
-                for (TextureSampler* s : {&block, &lanes}) s->set_state(0, state);
-                block.prepare();
-                if (cpu_runs_block_path()) {
-                    ASSERT_TRUE(block.block_path_applies(0));
-                }
-                // Batches at every column and every other row, to the edges and past them.
-                for (int y0 = -3; y0 < 34; y0 += 2)
-                    for (int x0 = -3; x0 < 66; ++x0) {
-                        std::array<emu::FloatLanes, 4> coords{};
-                        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-                            const int x = x0 + static_cast<int>(2 * (l / 4) + (l & 1u)), y = y0 + static_cast<int>((l >> 1) & 1u);
-                            coords[0][l] = (static_cast<float>(x) + 0.5f) / 64.0f;
-                            coords[1][l] = (static_cast<float>(y) + 0.5f) / 32.0f;
-                        }
-                        emu::TextureRequest request;
-                        request.coordinates = &coords;
-                        ASSERT_TRUE(same_texels(block, lanes, request, true))
-                            << format_info(format)->name << " at " << x0 << ", " << y0
-                            << (addresses64 ? " (64-bit addresses)" : "") << (avx2 ? " (AVX2 instance)" : "");
+        for_each_level_setup(texture, TextureFilter::Point, [&](TextureSampler& block, TextureSampler& lanes, const std::string& label) {
+            // Batches at every column and every other row, to the edges and past them.
+            for (int y0 = -3; y0 < 34; y0 += 2)
+                for (int x0 = -3; x0 < 66; ++x0) {
+                    std::array<emu::FloatLanes, 4> coords{};
+                    for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+                        const int x = x0 + static_cast<int>(2 * (l / 4) + (l & 1u)), y = y0 + static_cast<int>((l >> 1) & 1u);
+                        coords[0][l] = (static_cast<float>(x) + 0.5f) / 64.0f;
+                        coords[1][l] = (static_cast<float>(y) + 0.5f) / 32.0f;
                     }
-            }
-        }
+                    emu::TextureRequest request;
+                    request.coordinates = &coords;
+                    ASSERT_TRUE(same_texels(block, lanes, request, true))
+                        << format_info(format)->name << " at " << x0 << ", " << y0 << " " << label;
+                }
+        });
     }
 }
 
@@ -615,44 +629,25 @@ TEST(SamplerBlockPath, PointLookupsOfScreenAlignedBatchesReadTheirTexelRows) {
 TEST(SamplerBlockPath, BilinearLookupsOfScreenAlignedBatchesReadTheirTexelWindow) {
     std::mt19937 rng(20261202);
     const Texture texture = random_texture(rng, Format::A8R8G8B8, 64, 32, 1);  // powers of two: WRAP too
-    for (const bool addresses64 : {false, true})
-        for (const bool avx2 : forced_avx2_choices()) {
-            TextureSampler block, lanes;
-            block.set_texture(0, &texture);
-            block.set_block_64bit_addresses(addresses64);
-            block.set_block_avx2(avx2);
-            lanes.set_texture(0, &texture);
-            lanes.set_block_path(false);
-            SamplerState state;
-            state.mag_filter = state.min_filter = TextureFilter::Linear;
-            state.mip_filter = TextureFilter::None;
-            for (const TextureAddress mode : {TextureAddress::Clamp, TextureAddress::Wrap}) {
-                state.address_u = state.address_v = mode;
-                for (TextureSampler* s : {&block, &lanes}) s->set_state(0, state);
-                block.prepare();
-                if (cpu_runs_block_path()) {
-                    ASSERT_TRUE(block.block_path_applies(0));
-                }
-                for (const float step : {0.5f, 1.0f, 1.25f, 1.8f, -1.0f, 2.5f})
-                    for (const float shear : {0.0f, 0.3f})
-                    for (int y0 = -3; y0 < 34; y0 += 3)
-                        for (int x0 = -3; x0 < 66; ++x0) {
-                            std::array<emu::FloatLanes, 4> coords{};
-                            // A sub-texel offset per batch, so that the taps' weights vary.
-                            const float fraction = static_cast<float>(rng() % 256) / 256.0f;
-                            for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-                                const float px = static_cast<float>(2 * (l / 4) + (l & 1u)), py = static_cast<float>((l >> 1) & 1u);
-                                coords[0][l] = (static_cast<float>(x0) + fraction + px * step) / 64.0f;
-                                coords[1][l] = (static_cast<float>(y0) + fraction + py * std::abs(step) + px * shear) / 32.0f;
-                            }
-                            emu::TextureRequest request;
-                            request.coordinates = &coords;
-                            ASSERT_TRUE(same_texels(block, lanes, request, true))
-                                << "step " << step << " shear " << shear << " at " << x0 << ", " << y0 << (mode == TextureAddress::Wrap ? " WRAP" : " CLAMP")
-                                << (addresses64 ? " (64-bit addresses)" : "") << (avx2 ? " (AVX2 instance)" : "");
+    for_each_level_setup(texture, TextureFilter::Linear, [&](TextureSampler& block, TextureSampler& lanes, const std::string& label) {
+        for (const float step : {0.5f, 1.0f, 1.25f, 1.8f, -1.0f, 2.5f})
+            for (const float shear : {0.0f, 0.3f})
+                for (int y0 = -3; y0 < 34; y0 += 3)
+                    for (int x0 = -3; x0 < 66; ++x0) {
+                        std::array<emu::FloatLanes, 4> coords{};
+                        // A sub-texel offset per batch, so that the taps' weights vary.
+                        const float fraction = static_cast<float>(rng() % 256) / 256.0f;
+                        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+                            const float px = static_cast<float>(2 * (l / 4) + (l & 1u)), py = static_cast<float>((l >> 1) & 1u);
+                            coords[0][l] = (static_cast<float>(x0) + fraction + px * step) / 64.0f;
+                            coords[1][l] = (static_cast<float>(y0) + fraction + py * std::abs(step) + px * shear) / 32.0f;
                         }
-            }
-        }
+                        emu::TextureRequest request;
+                        request.coordinates = &coords;
+                        ASSERT_TRUE(same_texels(block, lanes, request, true))
+                            << "step " << step << " shear " << shear << " at " << x0 << ", " << y0 << " " << label;
+                    }
+    });
 }
 
 // A texture of `count` texels, `width` a row, texel v holding texel(v) in its bytes, POINT-
