@@ -332,10 +332,7 @@ bool additive(const BlendState& b) {
            b.dst_alpha == Blend::One && b.op_alpha == BlendOp::Add;
 }
 
-// The blending a merge kernel instance is compiled for: Any tests the state per call; the others
-// hold it as a compile-time fact (merge_unorm8_block's 4-byte 8-bit instances), so that their
-// code carries no other blend and keeps every value in registers.
-enum class KernelBlend { Any, Off, SourceOver, Additive };
+// The 8-bit block kernel's instance for blend state `b` (MergePlan::blend).
 KernelBlend kernel_blend(const BlendState& b) {
     return !b.enable ? KernelBlend::Off : source_over(b) ? KernelBlend::SourceOver : additive(b) ? KernelBlend::Additive : KernelBlend::Any;
 }
@@ -437,6 +434,7 @@ MergePlan merge_plan(const OutputMergerState& s, const RenderTargets& targets, c
     plan.avx512_block = cpu_has_avx512() && !in.block_avx2;
     plan.block = plan.avx512_block || cpu_has_avx2();
     plan.alpha_clamps = !(targets.color[0] && is_float_target(targets.color[0]->format()));
+    plan.blend = kernel_blend(s.blend);
     for (unsigned t = 0; t < kMaxRenderTargets; ++t) {
         const Surface* surface = targets.color[t];
         TargetPlan& target = plan.targets[t];
@@ -561,7 +559,7 @@ emu::LaneMask merge(const OutputMergerState& s, const RenderTargets& targets, co
             const auto run_kernel = [&](auto kernel) { kernel(s.blend, fmt, *surface, mask, src, lanes, run, write); };
             if (path == TargetPath::Unorm8Block8) avx512_block ? run_kernel(avx512::merge_unorm8_block<2, false>) : run_kernel(avx2::merge_unorm8_block<2, false>);
             else if (target.bytes) {
-                switch (kernel_blend(s.blend)) {
+                switch (plan.blend) {
                 case KernelBlend::Off: avx512_block ? run_kernel(avx512::merge_unorm8_block<1, true, KernelBlend::Off>) : run_kernel(avx2::merge_unorm8_block<1, true, KernelBlend::Off>); break;
                 case KernelBlend::SourceOver: avx512_block ? run_kernel(avx512::merge_unorm8_block<1, true, KernelBlend::SourceOver>) : run_kernel(avx2::merge_unorm8_block<1, true, KernelBlend::SourceOver>); break;
                 case KernelBlend::Additive: avx512_block ? run_kernel(avx512::merge_unorm8_block<1, true, KernelBlend::Additive>) : run_kernel(avx2::merge_unorm8_block<1, true, KernelBlend::Additive>); break;

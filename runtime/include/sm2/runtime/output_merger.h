@@ -101,8 +101,13 @@ struct TargetPlan {
     uint32_t mask = 0;   // the colour write mask
     const FormatInfo* info = nullptr;
 };
+// The blending the 8-bit block kernel (Unorm8Block with `bytes`) is compiled for: Any tests the
+// state per batch; the others hold it as a compile-time fact, so that the kernel's code carries
+// no other blend and keeps every value in registers.
+enum class KernelBlend : uint8_t { Any, Off, SourceOver, Additive };
 struct MergePlan {
     std::array<TargetPlan, kMaxRenderTargets> targets{};
+    KernelBlend blend = KernelBlend::Any;  // the state's blend, for the 8-bit block kernel
     bool avx512_block = false;  // the 16-lane kernels' instance: AVX-512, else AVX2 (where `block`)
     bool block = false;
     bool alpha_clamps = true;   // the alpha test clamps oC0.a (render target 0 is not a float target)
