@@ -74,12 +74,17 @@ struct NumericCliOptions {
     std::string engine = kDefaultEngine;
     uint64_t memory_limit_mib = runtime::kDefaultMemoryLimit >> 20;
     std::string read_root;
+    std::string jit_cache;
 
     void add_to(CLI::App& cmd) {
         cmd.add_option("--engine", engine,
                        std::string("How shaders run: interpreter (the reference) or jit (native code per shader; the "
                                    "same bytes). Default: ") + kDefaultEngine)
             ->check(CLI::IsMember({"interpreter", "jit"}));
+        cmd.add_option("--jit-cache", jit_cache,
+                       "Folder where the JIT keeps the machine code it compiles, made if missing, and a later run "
+                       "loads it instead of compiling again (the same code: the same bytes). Sets SM2_JIT_CACHE, "
+                       "which names it too; nothing is cached without either");
         cmd.add_option("--threads", threads, "Threads for tiles (default: all cores; the image does not depend on it)")
             ->check(CLI::Range(1u, 256u));
         cmd.add_option("--precision", precision,
@@ -118,6 +123,8 @@ struct NumericCliOptions {
         d.max_instruction_slots = max_slots;
         d.memory_limit = memory_limit_mib << 20;
         d.engine = engine == "jit" ? runtime::DeviceOptions::Engine::Jit : runtime::DeviceOptions::Engine::Interpreter;
+        // (Read by the JIT at each compilation: jit.h.)
+        if (!jit_cache.empty()) ::setenv("SM2_JIT_CACHE", jit_cache.c_str(), 1);
     }
 };
 
@@ -544,6 +551,7 @@ int run_bench(const BenchCliOptions& o) {
             {"stage_seconds",
              {{"pipelines", s.pipeline_seconds}, {"vertex", s.vertex_seconds}, {"setup", s.setup_seconds}, {"pixel", s.pixel_seconds}}},
             {"routines_compiled_first_run", first.routines_compiled},
+            {"routines_from_jit_cache_first_run", first.routines_from_cache},
             {"compile_seconds_first_run", first.compile_seconds},
             {"routines_compiled_later_runs", later},
             {"run_seconds", nlohmann::ordered_json::array()},
@@ -580,7 +588,9 @@ int run_bench(const BenchCliOptions& o) {
         uint64_t later = 0;
         for (size_t i = 1; i < runs.size(); ++i) later += runs[i].statistics.routines_compiled;
         std::cout << "engine: jit" << (emu::jit::available() ? "" : " (not in this build: interpreter)") << "; "
-                  << first.routines_compiled << " routines compiled in the first run, "
+                  << first.routines_compiled << " routines compiled in the first run"
+                  << (first.routines_from_cache ? " (" + std::to_string(first.routines_from_cache) + " loaded from the JIT cache)" : "")
+                  << ", "
                   << fixed(first.compile_seconds * 1000.0, 3) << " ms ("
                   << fixed(first.routines_compiled ? first.compile_seconds * 1000.0 / static_cast<double>(first.routines_compiled) : 0.0, 3)
                   << " ms per routine); later runs compiled " << later << "\n";

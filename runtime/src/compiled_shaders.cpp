@@ -37,6 +37,7 @@ CompiledLookup compiled_shader(const emu::Executable& executable) {
     result.shader = emu::jit::compile(executable);
     result.compiled_now = true;
     result.compile_seconds = result.shader ? result.shader->compile_seconds() : 0.0;
+    result.from_cache = result.shader && result.shader->from_cache();
     bucket.push_back({executable, result.shader});  // a failure is remembered too: not retried
     return result;
 }

@@ -14,6 +14,7 @@ struct CompiledLookup {
     std::shared_ptr<const emu::jit::CompiledShader> shader;  // null: run the interpreter
     bool compiled_now = false;                                // this call compiled it
     double compile_seconds = 0;                               // when compiled_now
+    bool from_cache = false;  // when compiled_now: loaded from the JIT cache (jit.h)
 };
 
 // The compiled form of `executable`, compiling it on first use. Null when this build or CPU has

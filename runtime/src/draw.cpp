@@ -167,6 +167,7 @@ const emu::jit::CompiledShader* compiled_for(Device::ShaderObject::Lowered& entr
         entry.compiled_looked_up = true;
         if (lookup.compiled_now && lookup.shader) {
             ++stats.routines_compiled;
+            if (lookup.from_cache) ++stats.routines_from_cache;
             stats.compile_seconds += lookup.compile_seconds;
         }
     }

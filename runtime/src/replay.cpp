@@ -864,6 +864,7 @@ DrawStatistics difference(const DrawStatistics& after, const DrawStatistics& bef
     d.setup_seconds = after.setup_seconds - before.setup_seconds;
     d.pixel_seconds = after.pixel_seconds - before.pixel_seconds;
     d.routines_compiled = after.routines_compiled - before.routines_compiled;
+    d.routines_from_cache = after.routines_from_cache - before.routines_from_cache;
     d.compile_seconds = after.compile_seconds - before.compile_seconds;
     return d;
 }

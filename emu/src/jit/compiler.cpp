@@ -32,6 +32,10 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -40,8 +44,14 @@
 #include <string>
 #include <vector>
 
+#include <dlfcn.h>
+#include <elf.h>
+#include <link.h>
+#include <unistd.h>
+
 #include <llvm/Analysis/TargetLibraryInfo.h>
 #include <llvm/Bitcode/BitcodeReader.h>
+#include <llvm/Config/llvm-config.h>
 #include <llvm/ExecutionEngine/Orc/CompileUtils.h>
 #include <llvm/ExecutionEngine/Orc/ExecutionUtils.h>
 #include <llvm/ExecutionEngine/Orc/JITTargetMachineBuilder.h>
@@ -58,6 +68,7 @@
 #include <llvm/Passes/PassBuilder.h>
 #include <llvm/Support/Error.h>
 #include <llvm/Support/MemoryBuffer.h>
+#include <llvm/Support/SHA1.h>
 #include <llvm/Support/TargetSelect.h>
 #include <llvm/Support/raw_ostream.h>
 #include <llvm/Target/TargetMachine.h>
@@ -107,6 +118,134 @@ llvm::Expected<llvm::TargetMachine*> thread_machine(const llvm::orc::JITTargetMa
     return machine.get();
 }
 
+// The JIT cache (jit.h): files `<key>.sm2jit` in the directory SM2_JIT_CACHE names, each the
+// 8 bytes of kCacheMagic, the SHA-1 of the object file, then the object file. A module whose
+// identifier is kCacheModulePrefix + key is stored there when ORC compiles it.
+constexpr const char* kCacheModulePrefix = "sm2-jit-cache:";
+constexpr char kCacheMagic[8] = {'S', 'M', '2', 'J', 'I', 'T', '1', '\n'};
+constexpr size_t kCacheDigestBytes = 20;
+
+// The directory SM2_JIT_CACHE names, or empty (no cache). Read at each compilation, so that a
+// test can set it.
+std::filesystem::path cache_directory() {
+    const char* directory = std::getenv("SM2_JIT_CACHE");
+    return directory != nullptr ? std::filesystem::path(directory) : std::filesystem::path();
+}
+
+std::filesystem::path cache_file(const std::filesystem::path& directory, const std::string& key) {
+    return directory / (key + ".sm2jit");
+}
+
+std::string hex(llvm::ArrayRef<uint8_t> bytes) {
+    static constexpr char kDigits[] = "0123456789abcdef";
+    std::string text;
+    for (const uint8_t byte : bytes) {
+        text += kDigits[byte >> 4];
+        text += kDigits[byte & 15u];
+    }
+    return text;
+}
+
+std::array<uint8_t, kCacheDigestBytes> sha1(llvm::StringRef data) { return llvm::SHA1::hash(llvm::arrayRefFromStringRef(data)); }
+
+// The object file cached under `key`, or null where there is none or it is not what was
+// stored (short, another format, a checksum that does not match).
+std::unique_ptr<llvm::MemoryBuffer> load_cached_object(const std::filesystem::path& directory, const std::string& key) {
+    auto read = llvm::MemoryBuffer::getFile(cache_file(directory, key).string(), /*IsText=*/false,
+                                            /*RequiresNullTerminator=*/false);
+    if (!read) return nullptr;
+    const llvm::StringRef file = (*read)->getBuffer();
+    const size_t header = sizeof kCacheMagic + kCacheDigestBytes;
+    if (file.size() <= header || !file.startswith(llvm::StringRef(kCacheMagic, sizeof kCacheMagic))) return nullptr;
+    const llvm::StringRef object = file.drop_front(header);
+    const std::array<uint8_t, kCacheDigestBytes> digest = sha1(object);
+    if (file.substr(sizeof kCacheMagic, kCacheDigestBytes) != llvm::StringRef(reinterpret_cast<const char*>(digest.data()), kCacheDigestBytes))
+        return nullptr;
+    return llvm::MemoryBuffer::getMemBufferCopy(object, key);
+}
+
+// Stores `object` under `key`: written beside its place and renamed there, so that a reader
+// (another process) never sees half a file. Best effort: a cache that cannot be written only
+// means compiling again.
+void store_cached_object(const std::filesystem::path& directory, const std::string& key, llvm::StringRef object) {
+    static std::atomic<uint64_t> next_temporary{0};
+    std::error_code error;
+    std::filesystem::create_directories(directory, error);
+    const std::filesystem::path target = cache_file(directory, key);
+    std::filesystem::path temporary = target;
+    temporary += ".tmp" + std::to_string(::getpid()) + "-" + std::to_string(next_temporary++);
+    {
+        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+        if (!out) return;
+        const std::array<uint8_t, kCacheDigestBytes> digest = sha1(object);
+        out.write(kCacheMagic, sizeof kCacheMagic);
+        out.write(reinterpret_cast<const char*>(digest.data()), kCacheDigestBytes);
+        out.write(object.data(), static_cast<std::streamsize>(object.size()));
+        if (!out) {
+            out.close();
+            std::filesystem::remove(temporary, error);
+            return;
+        }
+    }
+    std::filesystem::rename(temporary, target, error);
+    if (error) std::filesystem::remove(temporary, error);
+}
+
+// dl_iterate_phdr()'s search for the GNU build ID of the object that holds `address`.
+struct BuildIdSearch {
+    uintptr_t address = 0;
+    std::string id;  // hex
+};
+
+int find_build_id(dl_phdr_info* info, size_t, void* data) {
+    auto& search = *static_cast<BuildIdSearch*>(data);
+    bool holds = false;
+    for (unsigned i = 0; i < info->dlpi_phnum; ++i) {
+        const ElfW(Phdr)& segment = info->dlpi_phdr[i];
+        const uintptr_t begin = info->dlpi_addr + segment.p_vaddr;
+        if (segment.p_type == PT_LOAD && search.address >= begin && search.address - begin < segment.p_memsz) holds = true;
+    }
+    if (!holds) return 0;
+    for (unsigned i = 0; i < info->dlpi_phnum; ++i) {
+        const ElfW(Phdr)& segment = info->dlpi_phdr[i];
+        if (segment.p_type != PT_NOTE) continue;
+        const auto* at = reinterpret_cast<const unsigned char*>(info->dlpi_addr + segment.p_vaddr);
+        const unsigned char* const end = at + segment.p_memsz;
+        const auto aligned = [](size_t n) { return (n + 3) & ~size_t{3}; };
+        while (static_cast<size_t>(end - at) >= sizeof(ElfW(Nhdr))) {
+            ElfW(Nhdr) note;
+            std::memcpy(&note, at, sizeof note);
+            const unsigned char* name = at + sizeof note;
+            const unsigned char* desc = name + aligned(note.n_namesz);
+            at = desc + aligned(note.n_descsz);
+            if (at > end) break;
+            if (note.n_type == NT_GNU_BUILD_ID && note.n_namesz == 4 && std::memcmp(name, "GNU", 4) == 0) {
+                search.id = hex(llvm::ArrayRef<uint8_t>(desc, note.n_descsz));
+                return 1;
+            }
+        }
+    }
+    return 1;
+}
+
+// What identifies this module's build (sm2emu_jit.so: the JIT's code and the kernels' bitcode):
+// the linker's GNU build ID, else the SHA-1 of its file; empty where neither can be read (then
+// no cache).
+const std::string& module_identity() {
+    static const std::string identity = [] {
+        BuildIdSearch search;
+        search.address = reinterpret_cast<uintptr_t>(&cache_directory);
+        dl_iterate_phdr(find_build_id, &search);
+        if (!search.id.empty()) return "build-id " + search.id;
+        Dl_info info{};
+        if (dladdr(reinterpret_cast<void*>(&cache_directory), &info) == 0 || info.dli_fname == nullptr) return std::string();
+        auto file = llvm::MemoryBuffer::getFile(info.dli_fname);
+        if (!file) return std::string();
+        return "sha1 " + hex(sha1((*file)->getBuffer()));
+    }();
+    return identity;
+}
+
 // ORC's compile step: machine code for a module, on the thread that looks the shader up.
 class ThreadCompiler final : public llvm::orc::IRCompileLayer::IRCompiler {
 public:
@@ -116,7 +255,12 @@ public:
     llvm::Expected<std::unique_ptr<llvm::MemoryBuffer>> operator()(llvm::Module& module) override {
         auto machine = thread_machine(builder_);
         if (!machine) return machine.takeError();
-        return llvm::orc::SimpleCompiler(**machine)(module);
+        auto object = llvm::orc::SimpleCompiler(**machine)(module);
+        const llvm::StringRef id = module.getModuleIdentifier();
+        if (object && id.startswith(kCacheModulePrefix))
+            if (const std::filesystem::path directory = cache_directory(); !directory.empty())
+                store_cached_object(directory, id.drop_front(std::strlen(kCacheModulePrefix)).str(), (*object)->getBuffer());
+        return object;
     }
 
 private:
@@ -132,6 +276,14 @@ struct Host {
     std::string error;  // why there is no jit
     std::mutex shared_mutex;
     std::set<std::string> shared_kernels;  // out-of-line kernels added to the main JITDylib
+    // The JIT cache's groups of this process by key: their names are the key's, so a group
+    // compiled again while its code lives shares that code (its symbols are defined once).
+    struct CachedGroup {
+        std::weak_ptr<CompiledShader::Code> code;
+        std::vector<uintptr_t> entries;
+    };
+    std::mutex cache_mutex;  // held by a compilation with the cache, from its key to its code
+    std::map<std::string, CachedGroup> cached_groups;
 };
 
 Host* create_host() {
@@ -669,6 +821,22 @@ llvm::Expected<std::unique_ptr<llvm::Module>> kernel_module(llvm::LLVMContext& c
 std::string add_shared_kernel(Host& host, const std::string& name) {
     std::lock_guard lock(host.shared_mutex);
     if (host.shared_kernels.count(name) != 0) return {};
+    // The JIT cache: the kernel's machine code from the directory, else compiled and stored
+    // there (ThreadCompiler) under a key of what it is made from.
+    const std::filesystem::path cache = cache_directory();
+    std::string key;
+    if (!cache.empty() && !module_identity().empty()) {
+        key = hex(sha1("sm2-jit-cache shared 1\n" + module_identity() + "\n" + LLVM_VERSION_STRING + "\n" + host.cpu + "\n" +
+                       host.features + "\n" + name));
+        if (std::unique_ptr<llvm::MemoryBuffer> object = load_cached_object(cache, key)) {
+            if (llvm::Error failure = host.jit->addObjectFile(std::move(object))) {
+                llvm::consumeError(std::move(failure));  // compiled below instead
+            } else {
+                host.shared_kernels.insert(name);
+                return {};
+            }
+        }
+    }
     auto context = std::make_unique<llvm::LLVMContext>();
     auto parsed = kernel_module(*context, host);
     if (!parsed) return "cannot read the kernel bitcode: " + message(parsed.takeError());
@@ -681,6 +849,7 @@ std::string add_shared_kernel(Host& host, const std::string& name) {
     target_host(*kernel, host);
     if (std::string why = prepare_kernels(*module, {kernel}, host); !why.empty()) return why;
     if (std::string why = optimize_and_verify(*module, host); !why.empty()) return why;
+    if (!key.empty()) module->setModuleIdentifier(kCacheModulePrefix + key);
     if (llvm::Error added = host.jit->addIRModule(llvm::orc::ThreadSafeModule(std::move(module), std::move(context))))
         return message(std::move(added));
     host.shared_kernels.insert(name);
@@ -706,6 +875,28 @@ void CompiledShader::run(const ConstantFile& constants, Batch& batch, Sampler* s
     reinterpret_cast<Entry>(entry_)(&batch, registers, static_cast<int64_t>(constants.registers.size()), sampler,
                                     &sample_callback);
 }
+
+namespace {
+
+// The JIT cache's key of a group of shaders: the SHA-1 of everything its machine code is made
+// from: this module (the emitter, the passes, the code generator's options, the kernels), LLVM's
+// version, the host CPU and its features, and the shaders' IR as emitted (their names aside).
+// Empty where the module cannot be read.
+std::string cache_key(const Host& jit, const std::vector<llvm::Function*>& shaders) {
+    if (module_identity().empty()) return {};
+    std::string text;
+    llvm::raw_string_ostream stream(text);
+    stream << "sm2-jit-cache 1\n" << module_identity() << '\n' << LLVM_VERSION_STRING << '\n' << jit.cpu << '\n' << jit.features << '\n';
+    for (llvm::Function* shader : shaders) {
+        const std::string name = shader->getName().str();
+        shader->setName("sm2_shader");
+        shader->print(stream);
+        shader->setName(name);
+    }
+    return hex(sha1(stream.str()));
+}
+
+}  // namespace
 
 bool available() { return host().jit != nullptr; }
 
@@ -741,6 +932,58 @@ std::vector<std::shared_ptr<const CompiledShader>> compile_all(std::span<const E
             if (std::string why = add_shared_kernel(jit, kernel); !why.empty()) return fail(why);
         shaders.push_back(module->getFunction(names.back()));
     }
+    const auto finish = [&](const std::shared_ptr<CompiledShader::Code>& code, const std::vector<uintptr_t>& entries,
+                            bool from_cache) {
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::vector<std::shared_ptr<const CompiledShader>> compiled;
+        for (size_t i = 0; i < executables.size(); ++i)
+            compiled.push_back(std::make_shared<const CompiledShader>(code, entries[i], executables[i]->constant_count(),
+                                                                      executables[i]->steps().size(), seconds, from_cache));
+        return compiled;
+    };
+    // The JIT cache: the group's machine code from this process or from the directory, else
+    // compiled below and stored under the module's identifier (ThreadCompiler).
+    const std::filesystem::path cache = cache_directory();
+    const std::string key = cache.empty() ? std::string() : cache_key(jit, shaders);
+    std::unique_lock<std::mutex> cache_lock;
+    if (!key.empty()) {
+        cache_lock = std::unique_lock<std::mutex>(jit.cache_mutex);
+        for (size_t i = 0; i < shaders.size(); ++i) {
+            names[i] = "sm2_shader_" + key + "_" + std::to_string(i);
+            shaders[i]->setName(names[i]);
+        }
+        if (const auto group = jit.cached_groups.find(key); group != jit.cached_groups.end())
+            if (const std::shared_ptr<CompiledShader::Code> code = group->second.code.lock())
+                return finish(code, group->second.entries, true);
+        if (std::unique_ptr<llvm::MemoryBuffer> object = load_cached_object(cache, key)) {
+            auto code = std::make_shared<CompiledShader::Code>();
+            code->tracker = jit.jit->getMainJITDylib().createResourceTracker();
+            std::vector<uintptr_t> entries;
+            bool loaded = true;
+            if (llvm::Error failure = jit.jit->addObjectFile(code->tracker, std::move(object))) {
+                llvm::consumeError(std::move(failure));
+                loaded = false;
+            }
+            for (const std::string& name : names) {
+                if (!loaded) break;
+                auto symbol = jit.jit->lookup(name);
+                if (!symbol) {
+                    llvm::consumeError(symbol.takeError());
+                    loaded = false;
+                } else {
+                    entries.push_back(static_cast<uintptr_t>(symbol->getAddress()));
+                }
+            }
+            if (loaded) {
+                jit.cached_groups[key] = {code, entries};
+                return finish(code, entries, true);
+            }
+            // Not a usable object (from another build of LLVM's libraries?): compiled again
+            // below, and the file replaced.
+            code.reset();
+        }
+        module->setModuleIdentifier(kCacheModulePrefix + key);
+    }
     if (std::string why = prepare_kernels(*module, shaders, jit); !why.empty()) return fail(why);
 
     if (std::string why = optimize_and_verify(*module, jit); !why.empty()) return fail(why);
@@ -756,12 +999,8 @@ std::vector<std::shared_ptr<const CompiledShader>> compile_all(std::span<const E
         if (!symbol) return fail(message(symbol.takeError()));
         entries.push_back(static_cast<uintptr_t>(symbol->getAddress()));
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::vector<std::shared_ptr<const CompiledShader>> compiled;
-    for (size_t i = 0; i < executables.size(); ++i)
-        compiled.push_back(std::make_shared<const CompiledShader>(code, entries[i], executables[i]->constant_count(),
-                                                                  executables[i]->steps().size(), seconds));
-    return compiled;
+    if (!key.empty()) jit.cached_groups[key] = {code, entries};
+    return finish(code, entries, false);
 }
 
 std::shared_ptr<const CompiledShader> compile(const Executable& executable, std::string* error) {

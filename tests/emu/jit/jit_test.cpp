@@ -5,6 +5,7 @@
 // a0, the killed mask and every texture request must be the same bits.
 // Compile times and the speed of both on the sample shaders are printed, not asserted.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <bit>
@@ -615,6 +616,62 @@ TEST(Jit, ThreadsCompileAndRunAtOnce) {
         });
     for (auto& thread : threads) thread.join();
     for (const auto& failure : failures) EXPECT_EQ(failure, "");
+}
+
+// The JIT cache (SM2_JIT_CACHE, jit.h): a group compiled again while its code lives shares it;
+// freed, it loads from the directory; a file whose bytes changed is not loaded but compiled
+// again and replaced. Every compiled shader runs bit-identical to the interpreter.
+TEST(Jit, CacheServesTheSameCodeAndRefusesChangedFiles) {
+    if (!emu::jit::available()) GTEST_SKIP() << "built without the JIT";
+    const std::filesystem::path directory =
+        std::filesystem::temp_directory_path() / ("sm2_jit_cache_test_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(directory);
+    ASSERT_EQ(::setenv("SM2_JIT_CACHE", directory.c_str(), 1), 0);
+    Random random(20261203);
+    ProgramGenerator generator(random, Mode{Rounding::Fp32, emu::Transcendentals::Exact}, 16);
+    const emu::Executable executable = generator.generate(16);
+    const emu::ConstantFile constants = random_constants(random, 16);
+    const auto compile_and_check = [&](bool expect_from_cache, const char* what) {
+        std::string error;
+        auto compiled = emu::jit::compile(executable, &error);
+        EXPECT_NE(compiled, nullptr) << what << ": " << error;
+        if (!compiled) return compiled;
+        EXPECT_EQ(compiled->from_cache(), expect_from_cache) << what;
+        const auto same = run_both(executable, *compiled, constants, random, 2);
+        EXPECT_TRUE(same) << what << ": " << same.message();
+        return compiled;
+    };
+    const auto cache_files = [&] {
+        std::vector<std::filesystem::path> files;
+        for (const auto& entry : std::filesystem::directory_iterator(directory))
+            if (entry.path().extension() == ".sm2jit") files.push_back(entry.path());
+        return files;
+    };
+    {
+        const auto first = compile_and_check(false, "first compilation");
+        ASSERT_TRUE(std::filesystem::is_directory(directory));
+        EXPECT_FALSE(cache_files().empty());
+        const auto again = compile_and_check(true, "again while the first lives");
+        ASSERT_TRUE(first && again);
+    }
+    compile_and_check(true, "from the directory");
+    // Every file changed in one byte: its checksum's first (bytes 8-27 of the file, after the
+    // 8-byte tag), so that it no longer matches the object.
+    for (const auto& file : cache_files()) {
+        std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+        f.seekg(8);
+        const char byte = static_cast<char>(f.get());
+        f.seekp(8);
+        f.put(static_cast<char>(byte ^ 0x5A));
+    }
+    compile_and_check(false, "after the files changed");
+    compile_and_check(true, "from the replaced files");
+    // A file cut short is no more loaded than a changed one.
+    for (const auto& file : cache_files()) std::filesystem::resize_file(file, 12);
+    compile_and_check(false, "after the files were cut short");
+    ASSERT_EQ(::unsetenv("SM2_JIT_CACHE"), 0);
+    compile_and_check(false, "without the cache");
+    std::filesystem::remove_all(directory);
 }
 
 // The time per batch of the interpreter and of the compiled code on the longer sample shaders

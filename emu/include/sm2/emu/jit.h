@@ -36,9 +36,9 @@ public:
     struct Code;  // the machine code of the shaders compiled together (opaque), freed with the last
     // (made by compile() and compile_all())
     CompiledShader(std::shared_ptr<Code> code, uintptr_t entry, unsigned constant_count, size_t step_count,
-                   double compile_seconds)
+                   double compile_seconds, bool from_cache = false)
         : code_(std::move(code)), entry_(entry), constant_count_(constant_count), step_count_(step_count),
-          compile_seconds_(compile_seconds) {}
+          compile_seconds_(compile_seconds), from_cache_(from_cache) {}
     ~CompiledShader() = default;
     CompiledShader(const CompiledShader&) = delete;
     CompiledShader& operator=(const CompiledShader&) = delete;
@@ -56,6 +56,9 @@ public:
     // shaders compiled together by compile_all(), the time of the whole group.
     [[nodiscard]] double compile_seconds() const { return compile_seconds_; }
     [[nodiscard]] size_t step_count() const { return step_count_; }
+    // Whether the machine code came from the JIT cache (SM2_JIT_CACHE, below) instead of LLVM's
+    // optimizer and code generator.
+    [[nodiscard]] bool from_cache() const { return from_cache_; }
 
 private:
     std::shared_ptr<Code> code_;
@@ -63,12 +66,23 @@ private:
     unsigned constant_count_;
     size_t step_count_;
     double compile_seconds_;
+    bool from_cache_;
 };
 
 // Compiles `executable` for the host CPU. Null on failure (fp64 executable, no JIT in this
 // build, an LLVM error), with the reason in *error when given. Thread-safe.
 [[nodiscard]] std::shared_ptr<const CompiledShader> compile(const Executable& executable,
                                                             std::string* error = nullptr);
+
+// The JIT cache: where the environment variable SM2_JIT_CACHE names a directory (made if
+// missing), compile() and compile_all() keep each group's machine code there under a hash of
+// everything it is made from (the shaders' IR before optimization, the kernels' bitcode, LLVM's
+// version, the host CPU and its features, the pass pipeline), and a later compilation of the
+// same group, in this process or another, loads it instead of running LLVM's optimizer and code
+// generator: the same machine code, so the same results. A file that does not hold what it
+// should (its checksum) is compiled again and replaced. Nothing is read or written anywhere
+// when the variable is unset or empty. The folder's files are machine code this process runs:
+// name only a folder that others cannot write (as for the module SM2EMU_JIT names).
 
 // Several executables at once (a pipeline's vertex and pixel shaders, a cache warming up): one
 // LLVM module, so the fixed cost of a compilation is paid once. One compiled shader per

@@ -136,6 +136,7 @@ struct DrawStatistics {
     // Engine::Jit: shaders compiled by this device's draws and the wall time that took (part of
     // pipeline_seconds). A shader another Device already compiled is reused, not counted.
     uint64_t routines_compiled = 0;
+    uint64_t routines_from_cache = 0;  // of routines_compiled: loaded from the JIT cache (emu/jit.h)
     double compile_seconds = 0;
 };
 
