@@ -3,6 +3,7 @@
 #include <bit>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <memory>
@@ -41,6 +42,7 @@ struct RunOptions {
     bool json = false;
     bool trace = false;
     std::string engine = kDefaultEngine;
+    std::string jit_cache;
 };
 
 // Shortest text that reads back to the same value in the run's storage type (float or double).
@@ -218,6 +220,8 @@ int execute_and_print(const emu::Executable& executable, const emu::ConstantFile
     std::shared_ptr<const emu::jit::CompiledShader> compiled;
     if constexpr (std::is_same_v<BatchType, emu::Batch>) {
         if (o.engine == "jit" && !o.trace && emu::jit::available()) {
+            // (Read by the JIT at each compilation: jit.h.)
+            if (!o.jit_cache.empty()) ::setenv("SM2_JIT_CACHE", o.jit_cache.c_str(), 1);
             std::string error;
             compiled = emu::jit::compile(executable, &error);
             if (!compiled) throw InputError{"--engine jit: " + error};
@@ -431,6 +435,9 @@ void add_run_command(CLI::App& app, int& status) {
                     "jit (default where the build has one: native code, the same results) or interpreter (the "
                     "reference); --trace and fp64 always interpret")
         ->check(CLI::IsMember({"interpreter", "jit"}));
+    cmd->add_option("--jit-cache", o->jit_cache,
+                    "Folder where the JIT keeps the machine code it compiles (as replay's --jit-cache; "
+                    "SM2_JIT_CACHE names it too)");
     cmd->add_flag("--json", o->json, "Print JSON instead of text");
     cmd->add_flag("--trace", o->trace,
                   "Print every executed instruction (after flow control is resolved) with the "

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <sys/stat.h>
@@ -433,6 +434,32 @@ TEST(CliReplay, BenchNamesItsEngineAndCompilesOnlyInTheFirstRun) {
     auto interpreted = sm2("bench " + scene + " --repeat 1 --threads 1 --engine interpreter");
     ASSERT_EQ(interpreted.status, 0) << interpreted.err;
     EXPECT_NE(interpreted.out.find("engine: interpreter"), std::string::npos) << interpreted.out;
+}
+
+// --jit-cache DIR: the first run compiles and fills the folder, a second process loads every
+// routine from it, and both replays write the same frame.
+TEST(CliReplay, JitCacheFolderServesALaterProcess) {
+    const std::string scene = std::string(SM2_SOURCE_DIR) + "/samples/scenes/14_textured_phong.sm2cs";
+    const std::string dir = make_dir("jit_cache");
+    const std::string cache = dir + "/cache";
+    auto cold = sm2("bench " + scene + " --repeat 1 --threads 1 --jit-cache " + cache);
+    ASSERT_EQ(cold.status, 0) << cold.err;
+    if (cold.out.find("not in this build") != std::string::npos) GTEST_SKIP() << "built without the JIT";
+    EXPECT_EQ(cold.out.find("loaded from the JIT cache"), std::string::npos) << cold.out;
+    size_t files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(cache)) files += entry.path().extension() == ".sm2jit";
+    EXPECT_GT(files, 0u);
+    auto warm = sm2("bench " + scene + " --repeat 1 --threads 1 --jit-cache " + cache);
+    ASSERT_EQ(warm.status, 0) << warm.err;
+    // "N routines compiled in the first run (N loaded from the JIT cache)": every one.
+    std::smatch counts;
+    const std::regex pattern("(\\d+) routines compiled in the first run \\((\\d+) loaded from the JIT cache\\)");
+    ASSERT_TRUE(std::regex_search(warm.out, counts, pattern)) << warm.out;
+    EXPECT_EQ(counts[1].str(), counts[2].str()) << warm.out;
+    EXPECT_NE(counts[1].str(), "0") << warm.out;
+    ASSERT_EQ(sm2("replay " + scene + " -o " + dir + "/a --quiet --threads 1").status, 0);
+    ASSERT_EQ(sm2("replay " + scene + " -o " + dir + "/b --quiet --threads 1 --jit-cache " + cache).status, 0);
+    EXPECT_EQ(sm2("diff " + dir + "/a/frame_0000.png " + dir + "/b/frame_0000.png").status, 0);
 }
 
 TEST(CliReplay, RefusedCallsExit1WithFileLineAfterFinishingTheStream) {
