@@ -50,6 +50,7 @@
 #include <unistd.h>
 
 #include <llvm/Analysis/TargetLibraryInfo.h>
+#include <llvm/ADT/StringExtras.h>
 #include <llvm/Bitcode/BitcodeReader.h>
 #include <llvm/Config/llvm-config.h>
 #include <llvm/ExecutionEngine/Orc/CompileUtils.h>
@@ -136,16 +137,6 @@ std::filesystem::path cache_file(const std::filesystem::path& directory, const s
     return directory / (key + ".sm2jit");
 }
 
-std::string hex(llvm::ArrayRef<uint8_t> bytes) {
-    static constexpr char kDigits[] = "0123456789abcdef";
-    std::string text;
-    for (const uint8_t byte : bytes) {
-        text += kDigits[byte >> 4];
-        text += kDigits[byte & 15u];
-    }
-    return text;
-}
-
 std::array<uint8_t, kCacheDigestBytes> sha1(llvm::StringRef data) { return llvm::SHA1::hash(llvm::arrayRefFromStringRef(data)); }
 
 // The object file cached under `key`, or null where there is none or it is not what was
@@ -220,7 +211,7 @@ int find_build_id(dl_phdr_info* info, size_t, void* data) {
             at = desc + aligned(note.n_descsz);
             if (at > end) break;
             if (note.n_type == NT_GNU_BUILD_ID && note.n_namesz == 4 && std::memcmp(name, "GNU", 4) == 0) {
-                search.id = hex(llvm::ArrayRef<uint8_t>(desc, note.n_descsz));
+                search.id = llvm::toHex(llvm::ArrayRef<uint8_t>(desc, note.n_descsz), /*LowerCase=*/true);
                 return 1;
             }
         }
@@ -241,9 +232,20 @@ const std::string& module_identity() {
         if (dladdr(reinterpret_cast<void*>(&cache_directory), &info) == 0 || info.dli_fname == nullptr) return std::string();
         auto file = llvm::MemoryBuffer::getFile(info.dli_fname);
         if (!file) return std::string();
-        return "sha1 " + hex(sha1((*file)->getBuffer()));
+        return "sha1 " + llvm::toHex(sha1((*file)->getBuffer()), /*LowerCase=*/true);
     }();
     return identity;
+}
+
+// The JIT cache's key of `what` (a group's IR, an out-of-line kernel's name): the SHA-1, as hex,
+// of it and of everything else its machine code is made from: this module (the emitter, the
+// passes, the code generator's options, the kernels), LLVM's version, the host CPU and its
+// features. Empty where the module cannot be identified (then no cache).
+std::string cache_key(const std::string& cpu, const std::string& features, llvm::StringRef what) {
+    if (module_identity().empty()) return {};
+    const std::string text = "sm2-jit-cache 1\n" + module_identity() + "\n" + LLVM_VERSION_STRING + "\n" + cpu + "\n" +
+                             features + "\n" + what.str();
+    return llvm::toHex(sha1(text), /*LowerCase=*/true);
 }
 
 // ORC's compile step: machine code for a module, on the thread that looks the shader up.
@@ -824,10 +826,8 @@ std::string add_shared_kernel(Host& host, const std::string& name) {
     // The JIT cache: the kernel's machine code from the directory, else compiled and stored
     // there (ThreadCompiler) under a key of what it is made from.
     const std::filesystem::path cache = cache_directory();
-    std::string key;
-    if (!cache.empty() && !module_identity().empty()) {
-        key = hex(sha1("sm2-jit-cache shared 1\n" + module_identity() + "\n" + LLVM_VERSION_STRING + "\n" + host.cpu + "\n" +
-                       host.features + "\n" + name));
+    const std::string key = cache.empty() ? std::string() : cache_key(host.cpu, host.features, "shared kernel " + name);
+    if (!key.empty()) {
         if (std::unique_ptr<llvm::MemoryBuffer> object = load_cached_object(cache, key)) {
             if (llvm::Error failure = host.jit->addObjectFile(std::move(object))) {
                 llvm::consumeError(std::move(failure));  // compiled below instead
@@ -878,22 +878,30 @@ void CompiledShader::run(const ConstantFile& constants, Batch& batch, Sampler* s
 
 namespace {
 
-// The JIT cache's key of a group of shaders: the SHA-1 of everything its machine code is made
-// from: this module (the emitter, the passes, the code generator's options, the kernels), LLVM's
-// version, the host CPU and its features, and the shaders' IR as emitted (their names aside).
-// Empty where the module cannot be read.
-std::string cache_key(const Host& jit, const std::vector<llvm::Function*>& shaders) {
-    if (module_identity().empty()) return {};
-    std::string text;
+// The JIT cache's key of a group of shaders: cache_key() of their IR as emitted, their names
+// aside.
+std::string group_cache_key(const Host& jit, const std::vector<llvm::Function*>& shaders) {
+    std::string text = "group\n";
     llvm::raw_string_ostream stream(text);
-    stream << "sm2-jit-cache 1\n" << module_identity() << '\n' << LLVM_VERSION_STRING << '\n' << jit.cpu << '\n' << jit.features << '\n';
     for (llvm::Function* shader : shaders) {
         const std::string name = shader->getName().str();
         shader->setName("sm2_shader");
         shader->print(stream);
         shader->setName(name);
     }
-    return hex(sha1(stream.str()));
+    return cache_key(jit.cpu, jit.features, stream.str());
+}
+
+// The entry of each shader of a group added to the JIT (the first lookup generates the
+// machine code of a group added as IR).
+llvm::Expected<std::vector<uintptr_t>> lookup_entries(Host& jit, const std::vector<std::string>& names) {
+    std::vector<uintptr_t> entries;
+    for (const std::string& name : names) {
+        auto symbol = jit.jit->lookup(name);
+        if (!symbol) return symbol.takeError();
+        entries.push_back(static_cast<uintptr_t>(symbol->getAddress()));
+    }
+    return entries;
 }
 
 }  // namespace
@@ -944,7 +952,7 @@ std::vector<std::shared_ptr<const CompiledShader>> compile_all(std::span<const E
     // The JIT cache: the group's machine code from this process or from the directory, else
     // compiled below and stored under the module's identifier (ThreadCompiler).
     const std::filesystem::path cache = cache_directory();
-    const std::string key = cache.empty() ? std::string() : cache_key(jit, shaders);
+    const std::string key = cache.empty() ? std::string() : group_cache_key(jit, shaders);
     std::unique_lock<std::mutex> cache_lock;
     if (!key.empty()) {
         cache_lock = std::unique_lock<std::mutex>(jit.cache_mutex);
@@ -958,28 +966,17 @@ std::vector<std::shared_ptr<const CompiledShader>> compile_all(std::span<const E
         if (std::unique_ptr<llvm::MemoryBuffer> object = load_cached_object(cache, key)) {
             auto code = std::make_shared<CompiledShader::Code>();
             code->tracker = jit.jit->getMainJITDylib().createResourceTracker();
-            std::vector<uintptr_t> entries;
-            bool loaded = true;
-            if (llvm::Error failure = jit.jit->addObjectFile(code->tracker, std::move(object))) {
-                llvm::consumeError(std::move(failure));
-                loaded = false;
-            }
-            for (const std::string& name : names) {
-                if (!loaded) break;
-                auto symbol = jit.jit->lookup(name);
-                if (!symbol) {
-                    llvm::consumeError(symbol.takeError());
-                    loaded = false;
-                } else {
-                    entries.push_back(static_cast<uintptr_t>(symbol->getAddress()));
-                }
-            }
-            if (loaded) {
-                jit.cached_groups[key] = {code, entries};
-                return finish(code, entries, true);
+            auto entries = [&]() -> llvm::Expected<std::vector<uintptr_t>> {
+                if (llvm::Error failure = jit.jit->addObjectFile(code->tracker, std::move(object))) return failure;
+                return lookup_entries(jit, names);
+            }();
+            if (entries) {
+                jit.cached_groups[key] = {code, *entries};
+                return finish(code, *entries, true);
             }
             // Not a usable object (from another build of LLVM's libraries?): compiled again
             // below, and the file replaced.
+            llvm::consumeError(entries.takeError());
             code.reset();
         }
         module->setModuleIdentifier(kCacheModulePrefix + key);
@@ -993,14 +990,10 @@ std::vector<std::shared_ptr<const CompiledShader>> compile_all(std::span<const E
     llvm::orc::ThreadSafeModule owned(std::move(module), std::move(context));
     if (llvm::Error added = jit.jit->addIRModule(code->tracker, std::move(owned)))
         return fail(message(std::move(added)));
-    std::vector<uintptr_t> entries;
-    for (const std::string& name : names) {
-        auto symbol = jit.jit->lookup(name);  // the first lookup generates the machine code
-        if (!symbol) return fail(message(symbol.takeError()));
-        entries.push_back(static_cast<uintptr_t>(symbol->getAddress()));
-    }
-    if (!key.empty()) jit.cached_groups[key] = {code, entries};
-    return finish(code, entries, false);
+    auto entries = lookup_entries(jit, names);
+    if (!entries) return fail(message(entries.takeError()));
+    if (!key.empty()) jit.cached_groups[key] = {code, *entries};
+    return finish(code, *entries, false);
 }
 
 std::shared_ptr<const CompiledShader> compile(const Executable& executable, std::string* error) {

@@ -76,8 +76,8 @@ private:
 
 // The JIT cache: where the environment variable SM2_JIT_CACHE names a directory (made if
 // missing), compile() and compile_all() keep each group's machine code there under a hash of
-// everything it is made from (the shaders' IR before optimization, the kernels' bitcode, LLVM's
-// version, the host CPU and its features, the pass pipeline), and a later compilation of the
+// everything it is made from (the shaders' IR before optimization, the JIT module's build (its
+// code and kernels), LLVM's version, the host CPU and its features), and a later compilation of the
 // same group, in this process or another, loads it instead of running LLVM's optimizer and code
 // generator: the same machine code, so the same results. A file that does not hold what it
 // should (its checksum) is compiled again and replaced. Nothing is read or written anywhere
