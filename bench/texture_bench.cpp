@@ -1,6 +1,6 @@
 // Texels sampled per second through the engine's sampler interface (4 quads = 16 lookups per
 // call) for point, bilinear, trilinear and 16x anisotropic filtering on A8R8G8B8, DXT1 and
-// A16B16G16R16F 256x256 textures with full mip chains. Run: build/bench/texture_bench
+// A16B16G16R16F 256x256 textures with full mip chains, and DXT1 through the per-lane path. Run: build/bench/texture_bench
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -37,10 +37,12 @@ Texture make_texture(Format format) {
 
 enum Mode { kPoint, kBilinear, kTrilinear, kAniso16 };
 
-void BM_Sample(benchmark::State& state, Format format, Mode mode) {
+// per_lane: the sampler's per-lane path (the reference) instead of its 16-lane block path.
+void BM_Sample(benchmark::State& state, Format format, Mode mode, bool per_lane = false) {
     const Texture texture = make_texture(format);
     TextureSampler sampler;
     sampler.set_texture(0, &texture);
+    if (per_lane) sampler.set_block_path(false);
     SamplerState st;
     // pixel steps in texels along x and y
     float step_x = 0.75f, step_y = 0.75f;
@@ -90,6 +92,10 @@ void BM_Sample(benchmark::State& state, Format format, Mode mode) {
 
 SM2_TEXTURE_BENCH(A8R8G8B8);
 SM2_TEXTURE_BENCH(DXT1);
+// DXT1 through the per-lane path, which every DXTn lookup took before the block path read the
+// decoded texels (Texture::decoded_dxt()): the same bits, this run's ratio.
+BENCHMARK_CAPTURE(BM_Sample, DXT1_bilinear_per_lane, Format::DXT1, kBilinear, true);
+BENCHMARK_CAPTURE(BM_Sample, DXT1_trilinear_per_lane, Format::DXT1, kTrilinear, true);
 SM2_TEXTURE_BENCH(A16B16G16R16F);
 
 }  // namespace

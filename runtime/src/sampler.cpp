@@ -115,6 +115,10 @@ struct Context {
     TexelDecoder decode = nullptr;
     unsigned bpp = 0;
     bool dxt = false, srgb = false, cube = false, volume = false, fixed = true;
+    // The texels of a DXTn texture decoded to A8R8G8B8 (Texture::decoded_dxt(), the block
+    // path's view of it): filtered as fetch<>() filters the blocks, by the float sums, never
+    // by exact_bilinear()'s.
+    bool decoded_dxt = false;
     TextureAddress address[3]{};
     Float4 border{};
     Filter mag = Filter::Point, min = Filter::Point;
@@ -252,6 +256,8 @@ struct TextureSampler::BlockLevels {
     void (*filter)() = nullptr;
     // Which instance of the kernels runs: AVX-512's, or AVX2's (sampler_block.inc).
     bool avx512 = true;
+    // A DXTn texture's decoded texels, which `context` and the tables read: kept alive with them.
+    std::shared_ptr<const Texture> decoded_dxt;
 };
 
 namespace {
@@ -816,7 +822,8 @@ bool block_supported(const Context& c, BlockLevels& levels) {
     levels.exact_channels = 0;
     for (unsigned k = 0; k < 4; ++k) {
         const BlockChannel& ch = (*format)[k];
-        if (c.fixed && !c.srgb && ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 0xFFu) levels.exact_channels |= 1u << k;
+        if (c.fixed && !c.srgb && !c.decoded_dxt && ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 0xFFu)
+            levels.exact_channels |= 1u << k;
     }
     levels.pair_shuffle.fill(0x80);  // (an index with bit 7 set gives a 0 byte)
     if (levels.bytes)
@@ -946,7 +953,21 @@ std::shared_ptr<const TextureSampler::BlockLevels> TextureSampler::block_levels_
     const Stage& s = stages_.at(stage);
     if (!block_enabled_ || s.texture == nullptr || s.texture->levels() == 0) return nullptr;
     auto levels = std::make_shared<BlockLevels>();
-    if (!block_supported(make_context(*s.texture, s.state, precision_), *levels)) return nullptr;
+    Context c = make_context(*s.texture, s.state, precision_);
+    if (c.dxt) {
+        // The block path reads a DXTn texture's texels decoded (the same 8-bit values
+        // fetch<>() decodes per tap), in the context of the DXTn texture otherwise (its sRGB
+        // read, addressing and filters): A8R8G8B8's layout and decoder, no exact sums.
+        levels->decoded_dxt = s.texture->decoded_dxt();
+        c.texture = levels->decoded_dxt.get();
+        c.format = Format::A8R8G8B8;
+        c.decode = texel_decoder(c.format);
+        c.bpp = 4;
+        c.dxt = false;
+        c.decoded_dxt = true;
+        c.exact_channels = 0;
+    }
+    if (!block_supported(c, *levels)) return nullptr;
     if (block_64bit_addresses_) levels->offsets32 = false;
     levels->avx512 = cpu_has_avx512() && !block_avx2_;
     levels->filter = levels->avx512 ? avx512::block_filter_for(*levels) : avx2::block_filter_for(*levels);

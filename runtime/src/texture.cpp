@@ -1,12 +1,24 @@
 // Texture resources and box-filtered mip generation.
 #include "sm2/runtime/texture.h"
 
+#include <algorithm>
+#include <array>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+
+#include "dxt.h"
 
 namespace sm2::runtime {
 
 namespace {
+// Guards every Texture's decoded_dxt_ (one lock for all: taken once per draw and DXTn stage,
+// and by write accesses to DXTn textures).
+std::mutex& decoded_dxt_mutex() {
+    static std::mutex mutex;
+    return mutex;
+}
+
 [[noreturn]] void bad(const std::string& what) { throw std::invalid_argument("Texture: " + what); }
 bool pow2(uint32_t v) { return v != 0 && (v & (v - 1)) == 0; }
 }  // namespace
@@ -65,11 +77,52 @@ Texture Texture::create_volume(Format format, uint32_t width, uint32_t height, u
 
 Surface& Texture::surface(uint32_t level, uint32_t face) {
     if (level >= levels_ || face >= faces()) throw std::out_of_range("Texture::surface: no such level or face");
+    if (dxt::is_dxt(format_)) {
+        // The caller may write the blocks: the decoded copy no longer holds.
+        const std::lock_guard lock(decoded_dxt_mutex());
+        decoded_dxt_.reset();
+    }
     return surfaces_[size_t{face} * levels_ + level];
 }
 const Surface& Texture::surface(uint32_t level, uint32_t face) const {
     if (level >= levels_ || face >= faces()) throw std::out_of_range("Texture::surface: no such level or face");
     return surfaces_[size_t{face} * levels_ + level];
+}
+
+std::shared_ptr<const Texture> Texture::decoded_dxt() const {
+    if (!dxt::is_dxt(format_)) return nullptr;
+    const std::lock_guard lock(decoded_dxt_mutex());
+    if (decoded_dxt_) return decoded_dxt_;
+    auto decoded = std::make_shared<Texture>(create(type_, Format::A8R8G8B8, width_, height_, depth_, levels_));
+    const unsigned block_bytes = dxt::block_bytes(format_);
+    std::array<dxt::Rgba8, 16> texels;
+    for (uint32_t f = 0; f < faces(); ++f)
+        for (uint32_t l = 0; l < levels_; ++l) {
+            // (The const overload: the non-const one would drop the copy being made.)
+            const Surface& blocks = surface(l, f);
+            Surface& out = decoded->surfaces_[size_t{f} * levels_ + l];
+            // Levels below 4 texels a side keep a whole block, of which they read the first texels.
+            for (uint32_t z = 0; z < out.depth(); ++z)
+                for (uint32_t by = 0; by < (out.height() + 3) / 4; ++by)
+                    for (uint32_t bx = 0; bx < (out.width() + 3) / 4; ++bx) {
+                        const std::byte* block = blocks.bytes().data() + size_t{z} * blocks.slice_pitch() +
+                                                 size_t{by} * blocks.row_pitch() + size_t{bx} * block_bytes;
+                        dxt::decode_block(format_, block, texels);
+                        for (uint32_t y = 0; y < 4 && 4 * by + y < out.height(); ++y)
+                            for (uint32_t x = 0; x < 4 && 4 * bx + x < out.width(); ++x) {
+                                const dxt::Rgba8 t = texels[4 * y + x];
+                                // A8R8G8B8 in memory: blue, green, red, alpha.
+                                std::byte* texel = out.bytes().data() + size_t{z} * out.slice_pitch() +
+                                                   size_t{4 * by + y} * out.row_pitch() + size_t{4 * bx + x} * 4;
+                                texel[0] = static_cast<std::byte>(t.b);
+                                texel[1] = static_cast<std::byte>(t.g);
+                                texel[2] = static_cast<std::byte>(t.r);
+                                texel[3] = static_cast<std::byte>(t.a);
+                            }
+                    }
+        }
+    decoded_dxt_ = std::move(decoded);
+    return decoded_dxt_;
 }
 
 void Texture::generate_mips() {

@@ -221,6 +221,88 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
     }
 }
 
+// DXTn textures: the block path reads their texels decoded to A8R8G8B8 (Texture::decoded_dxt())
+// and must give the per-lane path's bits, which decodes each tap from its block and sums the taps
+// in float: 2D, cube and volume textures of random blocks (every bit pattern is a valid block:
+// DXT1's three-colour blocks and DXT5's six-alpha ones included), random states (sRGB reads too).
+TEST(SamplerBlockPath, DxtTexturesMatchThePerLanePath) {
+    std::mt19937 rng(20261203);
+    const Format formats[] = {Format::DXT1, Format::DXT2, Format::DXT3, Format::DXT4, Format::DXT5};
+    unsigned block_requests = 0, total = 0;
+    for (unsigned round = 0; round < 60; ++round) {
+        const Format format = formats[round % std::size(formats)];
+        const unsigned kind = rng() % 4;
+        const bool volume = kind == 0, cube = kind == 1, pow2 = rng() % 4 != 0;
+        // DXTn sizes are multiples of 4; the levels below 4 texels keep a whole block.
+        const uint32_t w = pow2 ? 4u << (rng() % 5) : 4 * (1 + rng() % 9), h = cube ? w : pow2 ? 4u << (rng() % 5) : 4 * (1 + rng() % 9);
+        const uint32_t d = volume ? (pow2 ? 1u << (rng() % 4) : 1 + rng() % 5) : 0;
+        const Texture texture = random_texture(rng, format, w, h, pow2 ? 0 : 1, d, cube);
+        TextureSampler block, lanes;
+        block.set_texture(0, &texture);
+        block.set_block_avx2(round % 3 == 2);
+        lanes.set_texture(0, &texture);
+        lanes.set_block_path(false);
+        for (unsigned states = 0; states < 6; ++states) {
+            const SamplerState state = random_state(rng);
+            const FilterPrecision precision = rng() % 4 == 0 ? FilterPrecision::Exact : FilterPrecision::Fixed8;
+            for (TextureSampler* s : {&block, &lanes}) {
+                s->set_state(0, state);
+                s->set_precision(precision);
+            }
+            if (states % 2) block.prepare();
+            const bool applies = block.block_path_applies(0);
+            for (unsigned k = 0; k < 20; ++k) {
+                std::array<emu::FloatLanes, 4> coords;
+                const emu::TextureRequest request = random_request(rng, coords);
+                ++total;
+                block_requests += applies ? 1 : 0;
+                ASSERT_TRUE(same_texels(block, lanes, request, true))
+                    << "round " << round << " (block path " << applies << ", " << w << "x" << h << ")";
+            }
+        }
+    }
+    if (cpu_runs_block_path()) {
+        EXPECT_GT(block_requests, total / 2);
+    }
+}
+
+// A write access to a DXTn texture drops its decoded copy: the next draw's block path reads the
+// new blocks. Level 0 of a 4x4 DXT1 texture, sampled POINT at its texel (1, 2), first all red
+// blocks (c0 = c1 = 0xF800, indices 0), then all blue (0x001F): (1, 0, 0, 1), then (0, 0, 1, 1).
+TEST(SamplerBlockPath, DxtWritesReachTheDecodedTexels) {
+    Texture texture = Texture::create_2d(Format::DXT1, 4, 4, 1);
+    const auto fill = [&](uint16_t colour) {
+        auto& bytes = texture.surface(0).bytes();
+        std::fill(bytes.begin(), bytes.end(), std::byte{0});
+        for (unsigned c = 0; c < 2; ++c) {
+            bytes[2 * c] = static_cast<std::byte>(colour & 0xFFu);
+            bytes[2 * c + 1] = static_cast<std::byte>(colour >> 8);
+        }
+    };
+    TextureSampler sampler;
+    sampler.set_texture(0, &texture);
+    std::array<emu::FloatLanes, 4> coords{}, out{};
+    for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+        coords[0][l] = 1.5f / 4.0f;
+        coords[1][l] = 2.5f / 4.0f;
+        coords[3][l] = 1.0f;
+    }
+    emu::TextureRequest request;
+    request.sampler = 0;
+    request.coordinates = &coords;
+    request.quad_count = emu::kBatchQuads;
+    const std::array<std::array<float, 4>, 2> expected = {{{1, 0, 0, 1}, {0, 0, 1, 1}}};
+    const uint16_t colours[2] = {0xF800, 0x001F};
+    for (unsigned step = 0; step < 2; ++step) {
+        fill(colours[step]);
+        sampler.prepare();  // as each draw does
+        EXPECT_EQ(sampler.block_path_applies(0), cpu_runs_block_path());
+        sampler.sample(request, out);
+        for (unsigned c = 0; c < 4; ++c)
+            for (unsigned l = 0; l < emu::kBatchLanes; ++l) ASSERT_EQ(out[c][l], expected[step][c]) << step << " " << c << " " << l;
+    }
+}
+
 // Fixed8 LINEAR on UNORM fields of at most 8 bits is the exact bilinear sum of the taps' integer
 // values with weights in 1/256 units, rounded once (docs/texturing.md): each result must be the
 // float nearest the exact value, which the test works out in double from the texel bytes (the

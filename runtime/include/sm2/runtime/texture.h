@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "sm2/runtime/formats.h"
@@ -51,6 +52,13 @@ public:
     // size 1 repeats its texel. Throws std::invalid_argument for DXTn (no encoder).
     void generate_mips();
 
+    // A DXTn texture's texels decoded to A8R8G8B8, level for level and face for face (the
+    // blocks decode to 8-bit RGBA: dxt.h), for the sampler's 16-lane path, which reads them in
+    // place of the blocks. Made on first use and kept until a write access (the non-const
+    // surface()) drops it: 8 (DXT1) or 4 times the blocks' memory while kept. Null for the
+    // other formats. Thread-safe against itself and against surface().
+    [[nodiscard]] std::shared_ptr<const Texture> decoded_dxt() const;
+
     [[nodiscard]] static uint32_t level_size(uint32_t size, uint32_t level) {
         return level >= 32 ? 1u : (size >> level) == 0 ? 1u : size >> level;
     }
@@ -65,6 +73,7 @@ private:
     Format format_ = Format::Unknown;
     uint32_t width_ = 0, height_ = 0, depth_ = 0, levels_ = 0;
     std::vector<Surface> surfaces_;  // face-major: surfaces_[face * levels_ + level]
+    mutable std::shared_ptr<const Texture> decoded_dxt_;  // decoded_dxt()'s copy while it holds
 };
 
 }  // namespace sm2::runtime
