@@ -1,6 +1,7 @@
 // Texels sampled per second through the engine's sampler interface (4 quads = 16 lookups per
 // call) for point, bilinear, trilinear and 16x anisotropic filtering on A8R8G8B8, DXT1 and
-// A16B16G16R16F 256x256 textures with full mip chains, and DXT1 through the per-lane path. Run: build/bench/texture_bench
+// A16B16G16R16F 256x256 textures with full mip chains, DXT1 through the per-lane path too, and
+// bilinear WRAP on a 320x240 texture by both paths. Run: build/bench/texture_bench
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -83,6 +84,44 @@ void BM_Sample(benchmark::State& state, Format format, Mode mode, bool per_lane 
     state.counters["texels/s"] = benchmark::Counter(static_cast<double>(state.iterations()) * sm2::emu::kBatchLanes,
                                                      benchmark::Counter::kIsRate);
 }
+
+// Bilinear WRAP on a 320x240 A8R8G8B8 texture (one level: a size that is not a power of two, as a
+// render target sampled by a post-processing pass): WRAP by the remainder in the block path,
+// against the per-lane path, which every such lookup took before.
+void BM_SampleWrapNotPow2(benchmark::State& state, bool per_lane) {
+    Texture texture = Texture::create_2d(Format::A8R8G8B8, 320, 240, 1);
+    uint32_t seed = 7;
+    for (auto& b : texture.surface(0).bytes()) {
+        seed = seed * 1664525u + 1013904223u;
+        b = static_cast<std::byte>(seed >> 24);
+    }
+    TextureSampler sampler;
+    sampler.set_texture(0, &texture);
+    if (per_lane) sampler.set_block_path(false);
+    SamplerState st;
+    st.mag_filter = st.min_filter = TextureFilter::Linear;
+    sampler.set_state(0, st);
+    std::array<sm2::emu::FloatLanes, 4> coords{}, out{};
+    sm2::emu::TextureRequest request;
+    request.coordinates = &coords;
+    float base = 0;
+    for (auto _ : state) {
+        for (unsigned q = 0; q < sm2::emu::kBatchQuads; ++q)
+            for (unsigned i = 0; i < 4; ++i) {
+                coords[0][4 * q + i] = base + static_cast<float>(2 * q + (i & 1)) * 0.75f / 320.0f;
+                coords[1][4 * q + i] = 0.3f * base + static_cast<float>(i >> 1) * 0.75f / 240.0f;
+            }
+        sampler.sample(request, out);
+        benchmark::DoNotOptimize(out);
+        base += 0.0123f;
+        if (base > 4) base -= 4;
+    }
+    state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * sm2::emu::kBatchLanes);
+    state.counters["texels/s"] = benchmark::Counter(static_cast<double>(state.iterations()) * sm2::emu::kBatchLanes,
+                                                     benchmark::Counter::kIsRate);
+}
+BENCHMARK_CAPTURE(BM_SampleWrapNotPow2, A8R8G8B8_bilinear_wrap_320x240, false);
+BENCHMARK_CAPTURE(BM_SampleWrapNotPow2, A8R8G8B8_bilinear_wrap_320x240_per_lane, true);
 
 #define SM2_TEXTURE_BENCH(fmt)                                                                     \
     BENCHMARK_CAPTURE(BM_Sample, fmt##_point, Format::fmt, kPoint);                                \

@@ -119,6 +119,9 @@ struct Context {
     // path's view of it): filtered as fetch<>() filters the blocks, by the float sums, never
     // by exact_bilinear()'s.
     bool decoded_dxt = false;
+    // The block path's: every level's sides are powers of two, so WRAP and MIRROR address by
+    // masks (else by a remainder, block_periodic_address()).
+    bool pow2_levels = false;
     TextureAddress address[3]{};
     Float4 border{};
     Filter mag = Filter::Point, min = Filter::Point;
@@ -788,11 +791,6 @@ std::optional<BlockFormat> block_format(Format f) {
     return format;
 }
 
-bool block_address_supported(TextureAddress mode, bool all_pow2) {
-    return mode == TextureAddress::Clamp || mode == TextureAddress::Border || mode == TextureAddress::MirrorOnce ||
-           ((mode == TextureAddress::Wrap || mode == TextureAddress::Mirror) && all_pow2);
-}
-
 // Whether the 16-lane path covers this context; fills the level tables.
 bool block_supported(const Context& c, BlockLevels& levels) {
     if (c.dxt) return false;
@@ -906,8 +904,8 @@ bool block_supported(const Context& c, BlockLevels& levels) {
                 levels.offsets32 ? static_cast<int32_t>(reinterpret_cast<uintptr_t>(base) - low) : 0;
         }
     levels.context = c;
-    return block_address_supported(c.address[0], all_pow2) && block_address_supported(c.address[1], all_pow2) &&
-           (!c.volume || block_address_supported(c.address[2], all_pow2));
+    levels.context.pow2_levels = all_pow2;
+    return true;
 }
 
 }  // namespace

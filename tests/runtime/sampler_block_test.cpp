@@ -153,7 +153,7 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
                               Format::Q16W16V16U16};
     unsigned block_requests = 0, total = 0, volume_block_requests = 0, narrow_block_requests = 0, wide_block_requests = 0;
     unsigned cube_block_requests = 0, anisotropic_block_requests = 0, half_block_requests = 0, signed_block_requests = 0;
-    unsigned srgb_block_requests = 0;
+    unsigned srgb_block_requests = 0, periodic_block_requests = 0;
     for (unsigned round = 0; round < 450; ++round) {
         const Format format = formats[rng() % std::size(formats)];
         const bool pow2 = rng() % 4 != 0;
@@ -198,6 +198,12 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
                                        format == Format::A2W10V10U10 || format == Format::Q16W16V16U16;
                 signed_block_requests += applies && is_signed ? 1 : 0;
                 srgb_block_requests += applies && state.srgb_texture && format_info(format)->srgb ? 1 : 0;
+                // WRAP or MIRROR on a size that is not a power of two: the remainder's addressing.
+                const auto periodic = [](TextureAddress m) { return m == TextureAddress::Wrap || m == TextureAddress::Mirror; };
+                periodic_block_requests += applies && !cube && !(std::has_single_bit(w) && std::has_single_bit(h)) &&
+                                                   (periodic(state.address_u) || periodic(state.address_v))
+                                               ? 1
+                                               : 0;
                 anisotropic_block_requests +=
                     applies && state.min_filter == TextureFilter::Anisotropic && state.max_anisotropy > 1 ? 1 : 0;
                 // (R32F's random texels include NaNs, and the engine stores every NaN as one pattern.)
@@ -218,6 +224,7 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
         EXPECT_GT(half_block_requests, total / 40);
         EXPECT_GT(signed_block_requests, total / 40);
         EXPECT_GT(srgb_block_requests, total / 100);
+        EXPECT_GT(periodic_block_requests, total / 40);
     }
 }
 
