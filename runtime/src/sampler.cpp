@@ -957,6 +957,7 @@ std::shared_ptr<const TextureSampler::BlockLevels> TextureSampler::block_levels_
         // fetch<>() decodes per tap), in the context of the DXTn texture otherwise (its sRGB
         // read, addressing and filters): A8R8G8B8's layout and decoder, no exact sums.
         levels->decoded_dxt = s.texture->decoded_dxt();
+        if (!levels->decoded_dxt) return nullptr;  // past the copies' budget: the per-lane path
         c.texture = levels->decoded_dxt.get();
         c.format = Format::A8R8G8B8;
         c.decode = texel_decoder(c.format);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -18,6 +19,11 @@ std::mutex& decoded_dxt_mutex() {
     static std::mutex mutex;
     return mutex;
 }
+
+// The bytes of the decoded_dxt() copies alive, and their budget. Atomic: a copy gives its bytes
+// back when its last owner lets it go, which may be under decoded_dxt_mutex() (surface()).
+std::atomic<uint64_t> decoded_dxt_bytes{0};
+std::atomic<uint64_t> decoded_dxt_budget{uint64_t{1} << 30};
 
 [[noreturn]] void bad(const std::string& what) { throw std::invalid_argument("Texture: " + what); }
 bool pow2(uint32_t v) { return v != 0 && (v & (v - 1)) == 0; }
@@ -93,7 +99,17 @@ std::shared_ptr<const Texture> Texture::decoded_dxt() const {
     if (!dxt::is_dxt(format_)) return nullptr;
     const std::lock_guard lock(decoded_dxt_mutex());
     if (decoded_dxt_) return decoded_dxt_;
-    auto decoded = std::make_shared<Texture>(create(type_, Format::A8R8G8B8, width_, height_, depth_, levels_));
+    uint64_t bytes = 0;
+    for (uint32_t l = 0; l < levels_; ++l)
+        bytes += uint64_t{4} * faces() * level_width(l) * level_height(l) * level_depth(l);
+    // (Only the deleter changes the count concurrently, and it only lowers it.)
+    if (decoded_dxt_bytes.load() + bytes > decoded_dxt_budget.load()) return nullptr;
+    auto made = std::make_unique<Texture>(create(type_, Format::A8R8G8B8, width_, height_, depth_, levels_));
+    decoded_dxt_bytes.fetch_add(bytes);
+    const std::shared_ptr<Texture> decoded(made.release(), [bytes](const Texture* t) {
+        delete t;
+        decoded_dxt_bytes.fetch_sub(bytes);
+    });
     const unsigned block_bytes = dxt::block_bytes(format_);
     std::array<dxt::Rgba8, 16> texels;
     for (uint32_t f = 0; f < faces(); ++f)
@@ -121,9 +137,11 @@ std::shared_ptr<const Texture> Texture::decoded_dxt() const {
                             }
                     }
         }
-    decoded_dxt_ = std::move(decoded);
+    decoded_dxt_ = decoded;
     return decoded_dxt_;
 }
+
+uint64_t Texture::set_decoded_dxt_budget(uint64_t bytes) { return decoded_dxt_budget.exchange(bytes); }
 
 void Texture::generate_mips() {
     const FormatInfo* info = format_info(format_);

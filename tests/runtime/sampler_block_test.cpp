@@ -11,6 +11,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sm2/runtime/sampler.h"
@@ -308,6 +309,37 @@ TEST(SamplerBlockPath, DxtWritesReachTheDecodedTexels) {
         for (unsigned c = 0; c < 4; ++c)
             for (unsigned l = 0; l < emu::kBatchLanes; ++l) ASSERT_EQ(out[c][l], expected[step][c]) << step << " " << c << " " << l;
     }
+}
+
+// The decoded copies have a budget: a DXTn texture whose copy would pass it is read by the
+// per-lane path (the same bits), and a copy let go gives its bytes back. A 64x64 DXT5 texture
+// with its chain decodes to 4 (64^2 + 32^2 + ... + 1) = 21 844 bytes.
+TEST(SamplerBlockPath, DxtCopiesBeyondTheirBudgetLeaveTheLookupsToThePerLanePath) {
+    std::mt19937 rng(3);
+    Texture texture = random_texture(rng, Format::DXT5, 64, 64, 0);
+    const Texture second = random_texture(rng, Format::DXT5, 64, 64, 0);
+    const uint64_t previous = Texture::set_decoded_dxt_budget(21843);
+    EXPECT_EQ(std::as_const(texture).decoded_dxt(), nullptr);
+    TextureSampler block, lanes;
+    bind_block_and_lanes(block, lanes, texture);
+    SamplerState state;
+    state.mag_filter = state.min_filter = state.mip_filter = TextureFilter::Linear;
+    block.set_state(0, state);
+    lanes.set_state(0, state);
+    block.prepare();
+    EXPECT_FALSE(block.block_path_applies(0));
+    std::array<emu::FloatLanes, 4> coords;
+    EXPECT_TRUE(same_texels(block, lanes, random_request(rng, coords), true));
+    Texture::set_decoded_dxt_budget(21844);
+    std::shared_ptr<const Texture> copy = std::as_const(texture).decoded_dxt();
+    ASSERT_NE(copy, nullptr);
+    EXPECT_EQ(copy->format(), Format::A8R8G8B8);
+    EXPECT_EQ(second.decoded_dxt(), nullptr);  // the first copy holds the whole budget
+    (void)texture.surface(0);                  // a write access drops the texture's reference,
+    EXPECT_EQ(second.decoded_dxt(), nullptr);  // while `copy` keeps it alive
+    copy.reset();                              // the last owner lets it go: its bytes are free
+    EXPECT_NE(second.decoded_dxt(), nullptr);
+    Texture::set_decoded_dxt_budget(previous);
 }
 
 // Fixed8 LINEAR on UNORM fields of at most 8 bits is the exact bilinear sum of the taps' integer

@@ -56,8 +56,12 @@ public:
     // blocks decode to 8-bit RGBA: dxt.h), for the sampler's 16-lane path, which reads them in
     // place of the blocks. Made on first use and kept until a write access (the non-const
     // surface()) drops it: 8 (DXT1) or 4 times the blocks' memory while kept. Null for the
-    // other formats. Thread-safe against itself and against surface().
+    // other formats, and where the copies alive would pass the process's budget for them
+    // (set_decoded_dxt_budget(); 1 GiB unless set), which leaves the lookups to the sampler's
+    // per-lane path. Thread-safe against itself and against surface().
     [[nodiscard]] std::shared_ptr<const Texture> decoded_dxt() const;
+    // The most bytes all decoded_dxt() copies alive at once may hold; returns the previous one.
+    static uint64_t set_decoded_dxt_budget(uint64_t bytes);
 
     [[nodiscard]] static uint32_t level_size(uint32_t size, uint32_t level) {
         return level >= 32 ? 1u : (size >> level) == 0 ? 1u : size >> level;
