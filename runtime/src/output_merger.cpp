@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include "format_layout.h"
+#include "half.h"
 #include "quad_rows.h"
 #include "unorm8_avx512.h"
 
@@ -77,6 +79,18 @@ float max_of(float a, float b) { return std::max(a, b); }
     load(x, a);
     load(y, b);
     return lanes_of(x < y ? y : x);
+}
+
+// A float target's blended NaN is stored as the one positive quiet NaN, the rule of every result
+// the shader stores (emu numerics.h): which NaN an operation on two NaNs returns (a NaN colour
+// blended onto a NaN texel) depends on the operand order the compiler gave it, and the per-pixel
+// and the batch paths are compiled apart.
+float canonical_nan(float v) { return v != v ? std::numeric_limits<float>::quiet_NaN() : v; }
+[[gnu::always_inline]] inline void canonical_nan(Lanes& x) {
+    Vector16 v;
+    load(v, x);
+    const Vector16 nan = Vector16{} + std::numeric_limits<float>::quiet_NaN();
+    x = lanes_of(v != v ? nan : v);
 }
 
 // Clamp to [0, 1]; NaN and -0 -> +0.
@@ -195,28 +209,41 @@ const Unorm8Texel& unorm8_texel(const FormatInfo& info) {
     return table[static_cast<size_t>(&info - format_table().data())];
 }
 
-// Float targets (R32F, G32R32F, A32B32G32R32F): every stored channel a 32-bit float in its own
-// 4 bytes, which layout::decode and encode copy bit for bit, and no other bytes. Without
-// blending a merge then copies each written channel's shader value into place; a masked
-// channel would store the bits it read, so it is left as it is.
+// Float targets: every stored channel a 32-bit float in its own 4 bytes (R32F, G32R32F,
+// A32B32G32R32F), which layout::decode and encode copy bit for bit, or a half in its own 2
+// bytes (R16F, G16R16F, A16B16G16R16F: `half`, half.h's conversions), and no other bytes.
+// Without blending a merge of 32-bit floats then copies each written channel's shader value
+// into place; a masked channel would store the bits it read, so it is left as it is.
 struct FloatTexel {
     bool valid = false;
+    bool half = false;
     unsigned bytes = 0;
     std::array<int8_t, 4> offset{};  // the channel's byte in the texel; -1: not stored
+    Vec4 missing{};                  // value read for a channel that is not stored
 };
 FloatTexel float_layout(const FormatInfo& info) {
     FloatTexel t;
     const layout::Layout lay = layout::layout_of(info.format);
     if (!lay.valid || info.kind != FormatKind::Color) return t;
+    bool floats = false, halves = false;
     for (unsigned c = 0; c < 4; ++c) {
         const layout::Channel ch = lay.rgba[c];
         t.offset[c] = -1;
-        if (ch.type == layout::Type::Zero || ch.type == layout::Type::One) continue;
-        if (ch.type != layout::Type::Float || ch.bits != 32 || ch.shift % 8 != 0) return t;
+        if (ch.type == layout::Type::Zero || ch.type == layout::Type::One) {
+            t.missing[c] = ch.type == layout::Type::One ? 1.0f : 0.0f;
+            continue;
+        }
+        const bool float32 = ch.type == layout::Type::Float && ch.bits == 32;
+        const bool half = ch.type == layout::Type::Half && ch.bits == 16;
+        if (!(float32 || half) || ch.shift % 8 != 0) return t;
+        floats |= float32;
+        halves |= half;
         for (unsigned d = 0; d < c; ++d)
             if (t.offset[d] == static_cast<int8_t>(ch.shift / 8)) return t;  // one field for two channels
         t.offset[c] = static_cast<int8_t>(ch.shift / 8);
     }
+    if (floats && halves) return t;
+    t.half = halves;
     t.bytes = info.bytes;
     t.valid = true;
     return t;
@@ -300,6 +327,114 @@ void merge_unorm8(const BlendState& b, const Unorm8Texel& fmt, Surface& surface,
     }
     for (unsigned l = 0; l < kLanes; ++l)
         if (write >> l & 1u) std::memcpy(bytes + offset[l], &packed[l], 4);
+}
+
+// half.h's conversions for 16 lanes at once, the same bits: GCC vectors of 16 32-bit lanes
+// (one AVX-512 register, two AVX2 ones in the clones below), branch-free.
+typedef uint32_t Words16 __attribute__((vector_size(4 * kLanes)));
+typedef int32_t Ints16 __attribute__((vector_size(4 * kLanes)));
+
+// half_to_float() of the halves in the low 16 bits of each lane: normal values rebiased,
+// infinities and NaNs with their payload as it is, denormals as their exact value m * 2^-24.
+[[gnu::always_inline]] inline void halves_to_floats(const Words16& h, Vector16& r) {
+    const Words16 magnitude = h & 0x7FFFu, sign = (h & 0x8000u) << 16, shifted = magnitude << 13;
+    Words16 bits = shifted + (112u << 23);
+    bits = magnitude >= 0x7C00u ? shifted | 0x7F800000u : bits;
+    const Vector16 tiny = __builtin_convertvector(magnitude, Vector16) * 0x1p-24f;
+    Words16 tiny_bits;
+    std::memcpy(&tiny_bits, &tiny, sizeof tiny);
+    bits = magnitude < 0x400u ? tiny_bits : bits;
+    bits |= sign;
+    std::memcpy(&r, &bits, sizeof r);
+}
+
+// float_to_half() of each lane (round to nearest even; overflow to infinity; a NaN kept quiet
+// with the top of its payload), in the low 16 bits.
+[[gnu::always_inline]] inline void floats_to_halves(const Vector16& f, Words16& result) {
+    Words16 bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    const Words16 sign = (bits >> 16) & 0x8000u, x = bits & 0x7FFFFFFFu, exponent = x >> 23;
+    const Words16 mantissa = x & 0x7FFFFFu;
+    // Normal halves (exponent 113-142): the rebiased bits cut to 10 mantissa bits, rounded to
+    // nearest even on the 13 bits cut (a carry may reach the exponent, or infinity).
+    Words16 normal = (x - (112u << 23)) >> 13;
+    const Words16 rest = x & 0x1FFFu;
+    normal += (rest > 0x1000u) | ((rest == 0x1000u) & (normal & 1u)) ? Words16{} + 1u : Words16{};
+    // Denormal halves (exponent 102-112): the 24-bit mantissa shifted by 126 - exponent (14-24).
+    const Words16 shift = 126u - exponent, full = mantissa | 0x800000u;
+    const Words16 safe_shift = exponent >= 102u && exponent <= 112u ? shift : Words16{} + 14u;
+    Words16 denormal = full >> safe_shift;
+    const Words16 one = Words16{} + 1u;
+    const Words16 below = full & ((one << safe_shift) - 1u), halfway = one << (safe_shift - 1u);
+    denormal += (below > halfway) | ((below == halfway) & (denormal & 1u)) ? one : Words16{};
+    Words16 r = exponent >= 113u ? normal : exponent >= 102u ? denormal : Words16{};
+    r = exponent >= 143u ? Words16{} + 0x7C00u : r;                              // overflow (and infinity)
+    r = x > 0x7F800000u ? 0x7C00u | 0x200u | (mantissa >> 13) : r;               // NaN
+    result = r | sign;
+}
+
+// A float target's merge (TargetPath::FloatMerge) for the lanes in `write`, at pixels `offset`
+// (pairwise different): the stored texels decoded as layout::decode does (a half by
+// half_to_float, a float as its bits), blend_unclamped() on the whole batch (float targets
+// clamp neither the source nor the result), and each lane's texel encoded as layout::encode
+// does (a masked channel stores what it read). The per-pixel path's operations, so its bytes
+// (output_merger_fast_test).
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+void merge_float(const BlendState& b, const FloatTexel& fmt, Surface& surface, uint32_t mask, const ShaderColor& src,
+                 const std::array<size_t, kLanes>& offset, emu::LaneMask write) {
+    std::byte* const bytes = surface.bytes().data();
+    Rgba<Lanes> dst, in, blended;
+    for (unsigned c = 0; c < 4; ++c) {
+        in[c].v = src[c];
+        dst[c] = Lanes(fmt.missing[c]);
+    }
+    if (b.enable || mask != 0xF) {
+        for (unsigned c = 0; c < 4; ++c) {
+            if (fmt.offset[c] < 0) continue;
+            std::array<uint32_t, kLanes> field{};  // the bits of the lanes in `write`
+            const std::byte* const at = bytes + fmt.offset[c];
+            // (Constant sizes: a copy of a size known at run time is a call to memcpy.)
+            for (unsigned l = 0; l < kLanes; ++l) {
+                if (!(write >> l & 1u)) continue;
+                if (fmt.half) std::memcpy(&field[l], at + offset[l], 2);
+                else std::memcpy(&field[l], at + offset[l], 4);
+            }
+            if (fmt.half) {
+                Words16 h;
+                Vector16 v;
+                std::memcpy(&h, field.data(), sizeof h);
+                halves_to_floats(h, v);
+                dst[c] = lanes_of(v);
+            } else {
+                std::memcpy(dst[c].v.data(), field.data(), sizeof field);
+            }
+        }
+    }
+    if (b.enable) {
+        blended = blend_unclamped(b, in, dst);
+        for (Lanes& c : blended) canonical_nan(c);
+    }
+    const Rgba<Lanes>& out = b.enable ? blended : in;
+    for (unsigned c = 0; c < 4; ++c) {
+        if (fmt.offset[c] < 0) continue;
+        const Lanes& value = mask >> c & 1u ? out[c] : dst[c];
+        std::array<uint32_t, kLanes> field;
+        if (fmt.half) {
+            Vector16 v;
+            load(v, value);
+            Words16 h;
+            floats_to_halves(v, h);
+            std::memcpy(field.data(), &h, sizeof h);
+        } else {
+            std::memcpy(field.data(), value.v.data(), sizeof field);
+        }
+        std::byte* const at = bytes + fmt.offset[c];
+        for (unsigned l = 0; l < kLanes; ++l) {
+            if (!(write >> l & 1u)) continue;
+            if (fmt.half) std::memcpy(at + offset[l], &field[l], 2);
+            else std::memcpy(at + offset[l], &field[l], 4);
+        }
+    }
 }
 
 // Blending of a whole batch, then the fixed-point clamp: the templates above inlined into one
@@ -423,8 +558,7 @@ Vec4 blend(const BlendState& b, const Vec4& src_in, const Vec4& dst, bool fixed_
     if (fixed_point)
         for (float& c : src) c = saturate(c);
     Vec4 r = blend_unclamped(b, src, dst);
-    if (fixed_point)
-        for (float& c : r) c = saturate(c);
+    for (float& c : r) c = fixed_point ? saturate(c) : canonical_nan(c);
     return r;
 }
 
@@ -457,8 +591,10 @@ MergePlan merge_plan(const OutputMergerState& s, const RenderTargets& targets, c
             target.bytes = unorm.valid;
         } else if (unorm.valid) {
             target.path = TargetPath::Unorm8Lanes;
-        } else if (!s.blend.enable && float_texel(*info).valid) {
-            target.path = block ? TargetPath::FloatBlock : TargetPath::FloatLanes;
+        } else if (const FloatTexel& floats = float_texel(*info); floats.valid) {
+            target.path = s.blend.enable || floats.half ? TargetPath::FloatMerge
+                          : block                       ? TargetPath::FloatBlock
+                                                        : TargetPath::FloatLanes;
         }
     }
     return plan;
@@ -545,7 +681,8 @@ emu::LaneMask merge(const OutputMergerState& s, const RenderTargets& targets, co
         // The 8-bit paths blend the batch's texels at once: a pixel two lanes write (not
         // `distinct`) goes pixel by pixel, where the later lane blends onto the earlier one.
         TargetPath path = target.path;
-        if (!distinct && (path == TargetPath::Unorm8Block || path == TargetPath::Unorm8Block8 || path == TargetPath::Unorm8Lanes))
+        if (!distinct && (path == TargetPath::Unorm8Block || path == TargetPath::Unorm8Block8 || path == TargetPath::Unorm8Lanes ||
+                          path == TargetPath::FloatMerge))
             path = TargetPath::PerPixel;
         switch (path) {
         case TargetPath::Unorm8Block:
@@ -574,6 +711,14 @@ emu::LaneMask merge(const OutputMergerState& s, const RenderTargets& targets, co
             for (unsigned l = 0; l < kLanes; ++l)
                 offset[l] = static_cast<size_t>(lanes.y[l]) * surface->row_pitch() + static_cast<size_t>(lanes.x[l]) * 4;
             merge_unorm8(s.blend, unorm8_texel(*target.info), *surface, mask, src, offset, write);
+            continue;
+        }
+        case TargetPath::FloatMerge: {
+            const FloatTexel& fmt = float_texel(*target.info);
+            std::array<size_t, kLanes> offset;  // used for the lanes in `write` only
+            for (unsigned l = 0; l < kLanes; ++l)
+                offset[l] = static_cast<size_t>(lanes.y[l]) * surface->row_pitch() + static_cast<size_t>(lanes.x[l]) * fmt.bytes;
+            merge_float(s.blend, fmt, *surface, mask, src, offset, write);
             continue;
         }
         case TargetPath::FloatBlock:

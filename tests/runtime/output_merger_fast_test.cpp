@@ -1,6 +1,6 @@
 // The output merger's fast paths (8-bit and wider UNORM targets without sRGB write, blended a
 // batch at a time on the stored bytes; 32-bit float targets without blending, copied into
-// place) against the per-pixel path
+// place; half and blended float targets, a batch at a time) against the per-pixel path
 // through Surface::read/write (MergeInput::generic_path): random states and batches must leave
 // the same bytes in every target and in the depth/stencil surface. Plus worked examples.
 #include <gtest/gtest.h>
@@ -109,14 +109,15 @@ private:
     std::mt19937 rng_;
 };
 
-// Render-target colour formats, with the fast paths' 8-bit and 32-bit float ones weighted up.
+// Render-target colour formats, with the fast paths' 8-bit, 32-bit float and half ones weighted up.
 std::vector<Format> target_formats() {
     std::vector<Format> formats;
     for (const FormatInfo& info : format_table())
         if (info.render_target && info.kind == FormatKind::Color) formats.push_back(info.format);
     for (int i = 0; i < 3; ++i)
         formats.insert(formats.end(), {Format::A8R8G8B8, Format::A8R8G8B8, Format::X8R8G8B8, Format::A8B8G8R8,
-                                       Format::X8B8G8R8, Format::R32F, Format::G32R32F, Format::A32B32G32R32F});
+                                       Format::X8B8G8R8, Format::R32F, Format::G32R32F, Format::A32B32G32R32F,
+                                       Format::R16F, Format::G16R16F, Format::A16B16G16R16F});
     return formats;
 }
 
@@ -301,6 +302,58 @@ TEST(OutputMergerFast, EncodeMatchesOverASweep) {
             }
             ASSERT_TRUE(same_both_ways(c)) << "format " << static_cast<uint32_t>(f) << ", values from " << at;
         }
+    }
+}
+
+// Half targets convert a batch at a time (floats_to_halves, halves_to_floats): the per-pixel
+// path's half.h bits for every half read back (all 65 536 patterns, NaNs and denormals included,
+// in the masked channels of A16B16G16R16F texels, which store what they read) and for the floats
+// at and beside every rounding boundary of the stores: each midpoint between two neighbouring
+// halves (a tie, rounded to the even one), its float neighbours either side, the denormal range
+// and the overflow to infinity at 65520.
+TEST(OutputMergerFast, HalfTargetsConvertEveryHalfAndEveryRoundingBoundary) {
+    Case c;
+    c.color[0] = Surface(Format::A16B16G16R16F, 8, 2);
+    c.lanes.quad_count = 4;
+    for (unsigned i = 0; i < kLanes; ++i) {
+        c.lanes.x[i] = static_cast<int32_t>(2 * (i / 4) + (i & 1u));
+        c.lanes.y[i] = static_cast<int32_t>(i >> 1 & 1u);
+    }
+    c.input.live = emu::kAllLanes;
+    RenderState rs;
+    rs.color_write_enable[0] = 0x1;  // red written, green, blue and alpha read and stored back
+    c.state = output_merger_state(rs);
+    for (uint32_t first = 0; first < 65536; first += 4 * kLanes) {
+        auto& bytes = c.color[0]->bytes();
+        for (uint32_t i = 0; i < 4 * kLanes; ++i) {
+            const auto h = static_cast<uint16_t>(first + i);
+            std::memcpy(bytes.data() + 2 * i, &h, 2);
+        }
+        ASSERT_TRUE(same_both_ways(c)) << "halves from " << first;
+    }
+    std::vector<float> values;
+    for (uint32_t h = 0; h < 0x7C00; ++h) {
+        uint16_t a = static_cast<uint16_t>(h), b = static_cast<uint16_t>(h + 1);
+        float fa, fb;
+        {
+            // The two neighbours' values through the per-pixel path's own decoder.
+            Surface one(Format::R16F, 2, 1);
+            std::memcpy(one.bytes().data(), &a, 2);
+            std::memcpy(one.bytes().data() + 2, &b, 2);
+            fa = one.read(0, 0, 0)[0];
+            fb = one.read(1, 0, 0)[0];
+        }
+        const float mid = fa + (fb - fa) / 2;  // exact: two neighbouring halves' midpoint has 12 bits
+        for (const float v : {mid, std::nextafter(mid, 0.0f), std::nextafter(mid, 1e9f), fa})
+            for (const float sign : {1.0f, -1.0f}) values.push_back(sign * v);
+    }
+    for (const float v : {65519.0f, 65520.0f, 65535.0f, 65536.0f, 1e-8f, 2.9e-8f, 3e-8f, 5.96e-8f, 1e-40f, 0.0f})
+        values.push_back(v);
+    rs.color_write_enable[0] = 0xF;
+    c.state = output_merger_state(rs);
+    for (size_t at = 0; at < values.size(); at += 4 * kLanes) {
+        for (unsigned i = 0; i < 4 * kLanes; ++i) c.batch.render_target(0)[i % 4][i / 4] = values[(at + i) % values.size()];
+        ASSERT_TRUE(same_both_ways(c)) << "values from " << at;
     }
 }
 

@@ -91,6 +91,7 @@ enum class TargetPath : uint8_t {
     Unorm8Lanes,   // 8-bit fields in 4-byte texels, without the 16-lane kernels
     FloatBlock,    // 32-bit float channels without blending, copied by the 16-lane kernels
     FloatLanes,    // the same copy, lane by lane
+    FloatMerge,    // 16- or 32-bit float channels, blended or halves: read, blended, written a batch at a time
     PerPixel,      // every other target: Surface::read/write pixel by pixel
 };
 struct TargetPlan {
