@@ -17,6 +17,21 @@ namespace sm2::runtime {
 // 256 entries: srgb_to_linear(i / 255).
 [[nodiscard]] const std::array<float, 256>& srgb_to_linear_table();
 
+// The sRGB write of an 8-bit field, byte(v) = layout::encode's round(255 linear_to_srgb(v)) for
+// v in [0, 1], as thresholds: entry k (1-255) is the least float v in [0, 1] with byte(v) >= k
+// (entry 0 is 0), so byte(v) is the number of entries 1-255 at or below v. byte is
+// non-decreasing in v (linear_to_srgb is: its pieces are monotonic, glibc's pow is correctly
+// rounded, and the curve steps up where they meet; every float in [0, 1] was checked once, see
+// docs/performance.md), which makes the search and the thresholds exact.
+[[nodiscard]] const std::array<float, 256>& linear_to_srgb_byte_thresholds();
+
+// byte(v) of linear_to_srgb_byte_thresholds() for v in [0, 1], by binary search.
+[[nodiscard]] inline uint32_t linear_to_srgb_byte(float v, const std::array<float, 256>& thresholds) {
+    uint32_t k = 0;
+    for (uint32_t step = 128; step != 0; step >>= 1) k += v >= thresholds[k + step] ? step : 0;
+    return k;
+}
+
 namespace layout {
 
 enum class Type : uint8_t {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -240,6 +241,30 @@ float linear_to_srgb(float c) {
 const std::array<float, 256>& srgb_to_linear_table() {
     static const SrgbTable table;
     return table.to_linear;
+}
+
+const std::array<float, 256>& linear_to_srgb_byte_thresholds() {
+    static const std::array<float, 256> thresholds = [] {
+        // layout::encode's 8-bit UNORM store of linear_to_srgb(v).
+        const auto byte = [](float v) {
+            const double scaled = static_cast<double>(linear_to_srgb(v)) * 255.0;
+            return std::floor((!(scaled > 0.0) ? 0.0 : scaled > 255.0 ? 255.0 : scaled) + 0.5);
+        };
+        std::array<float, 256> t{};
+        for (unsigned k = 1; k < 256; ++k) {
+            // The least bit pattern in [0, 1.0f] whose byte reaches k (floats in [0, 1] order as
+            // their bits do).
+            uint32_t low = 0, high = 0x3F800000u;
+            while (low < high) {
+                const uint32_t mid = low + (high - low) / 2;
+                if (byte(std::bit_cast<float>(mid)) >= k) high = mid;
+                else low = mid + 1;
+            }
+            t[k] = std::bit_cast<float>(low);
+        }
+        return t;
+    }();
+    return thresholds;
 }
 
 }  // namespace sm2::runtime

@@ -291,22 +291,29 @@ bool distinct_pixels(const std::array<uint32_t, kLanes>& key, bool quad_order) {
 
 // Blending, write mask and store for the lanes in `write` of one fast-path target (every lane
 // inside the surface). src: the shader colour of each lane.
+// srgb: an sRGB write (render target 0 under SRGBWRITEENABLE): the colour channels blend in
+// linear space (each stored byte through srgb_to_linear_table(), srgb_to_linear's values) and
+// store linear_to_srgb's byte (linear_to_srgb_byte(), exact by its thresholds); alpha as without.
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 void merge_unorm8(const BlendState& b, const Unorm8Texel& fmt, Surface& surface, uint32_t mask,
-                  const ShaderColor& src, const std::array<size_t, kLanes>& offset, emu::LaneMask write) {
+                  const ShaderColor& src, const std::array<size_t, kLanes>& offset, emu::LaneMask write, bool srgb) {
     std::byte* const bytes = surface.bytes().data();
-    Rgba<Lanes> dst, blended;
+    Rgba<Lanes> dst, linear, blended;
     if (b.enable || mask != 0xF) {
         std::array<uint32_t, kLanes> stored{};
         for (unsigned l = 0; l < kLanes; ++l)
             if (write >> l & 1u) std::memcpy(&stored[l], bytes + offset[l], 4);
+        const std::array<float, 256>& to_linear = srgb_to_linear_table();
         for (unsigned c = 0; c < 4; ++c) {
             if (fmt.shift[c] < 0) {
-                dst[c] = Lanes(fmt.missing[c]);
+                dst[c] = linear[c] = Lanes(fmt.missing[c]);
                 continue;
             }
             const auto shift = static_cast<unsigned>(fmt.shift[c]);
             for (unsigned l = 0; l < kLanes; ++l) dst[c].v[l] = decode_unorm8(stored[l] >> shift & 0xFFu);
+            linear[c] = dst[c];
+            if (srgb && c < 3)
+                for (unsigned l = 0; l < kLanes; ++l) linear[c].v[l] = to_linear[stored[l] >> shift & 0xFFu];
         }
     }
     Rgba<Lanes> clamped;
@@ -315,15 +322,21 @@ void merge_unorm8(const BlendState& b, const Unorm8Texel& fmt, Surface& surface,
         saturate(clamped[c]);
     }
     if (b.enable) {
-        blended = blend_unclamped(b, clamped, dst);
+        blended = blend_unclamped(b, clamped, linear);
         for (Lanes& c : blended) saturate(c);
     }
     const Rgba<Lanes>& out = b.enable ? blended : clamped;  // in [0, 1], as is dst
     std::array<uint32_t, kLanes> packed{};
+    const std::array<float, 256>& thresholds = linear_to_srgb_byte_thresholds();
     for (unsigned c = 0; c < 4; ++c) {
         if (fmt.shift[c] < 0) continue;
+        const auto shift = static_cast<unsigned>(fmt.shift[c]);
+        if (srgb && c < 3 && (mask >> c & 1u)) {
+            for (unsigned l = 0; l < kLanes; ++l) packed[l] |= linear_to_srgb_byte(out[c].v[l], thresholds) << shift;
+            continue;
+        }
         // A masked channel stores what it read (which encodes back to the same byte).
-        encode_unorm8(mask >> c & 1u ? out[c] : dst[c], static_cast<unsigned>(fmt.shift[c]), packed);
+        encode_unorm8(mask >> c & 1u ? out[c] : dst[c], shift, packed);
     }
     for (unsigned l = 0; l < kLanes; ++l)
         if (write >> l & 1u) std::memcpy(bytes + offset[l], &packed[l], 4);
@@ -582,7 +595,12 @@ MergePlan merge_plan(const OutputMergerState& s, const RenderTargets& targets, c
         target.fixed = !is_float_target(surface->format());
         target.srgb = t == 0 && s.srgb_write && info->srgb;
         target.path = TargetPath::PerPixel;
-        if (target.srgb || in.generic_path) continue;
+        if (in.generic_path) continue;
+        if (target.srgb) {
+            // sRGB writes of 8-bit fields: merge_unorm8()'s sRGB conversions.
+            if (unorm8_texel(*info).valid) target.path = TargetPath::Unorm8Lanes;
+            continue;
+        }
         // (32-bit offsets in the 16-lane kernels.)
         const bool block = plan.block && surface->bytes().size() <= size_t{INT32_MAX};
         const Unorm8Texel& unorm = unorm8_texel(*info);
@@ -710,7 +728,7 @@ emu::LaneMask merge(const OutputMergerState& s, const RenderTargets& targets, co
             std::array<size_t, kLanes> offset;  // used for the lanes in `write` only
             for (unsigned l = 0; l < kLanes; ++l)
                 offset[l] = static_cast<size_t>(lanes.y[l]) * surface->row_pitch() + static_cast<size_t>(lanes.x[l]) * 4;
-            merge_unorm8(s.blend, unorm8_texel(*target.info), *surface, mask, src, offset, write);
+            merge_unorm8(s.blend, unorm8_texel(*target.info), *surface, mask, src, offset, write, srgb);
             continue;
         }
         case TargetPath::FloatMerge: {

@@ -357,6 +357,69 @@ TEST(OutputMergerFast, HalfTargetsConvertEveryHalfAndEveryRoundingBoundary) {
     }
 }
 
+// sRGB writes (render target 0, SRGBWRITEENABLE) on 8-bit targets store linear_to_srgb's byte
+// by thresholds (linear_to_srgb_byte()): the per-pixel path's bytes for the colours at and
+// a few ulps either side of every threshold, found here by bisecting the per-pixel path's own
+// stores (a one-pixel merge through the generic path), and over a sweep of [-0.5, 1.5]; with
+// and without blending (source over onto random bytes, read linear).
+TEST(OutputMergerFast, SrgbWritesMatchThePerPixelPathAtEveryByteBoundary) {
+    // The byte the per-pixel path stores for red = v (no blending).
+    const auto stored_red = [](float v) {
+        Case one;
+        one.color[0] = Surface(Format::A8R8G8B8, 2, 2);
+        RenderState rs;
+        rs.srgb_write_enable = true;
+        one.state = output_merger_state(rs);
+        one.lanes.quad_count = 1;
+        for (unsigned i = 0; i < 4; ++i) {
+            one.lanes.x[i] = static_cast<int32_t>(i & 1u);
+            one.lanes.y[i] = static_cast<int32_t>(i >> 1);
+            one.batch.set(one.batch.render_target(0), i, v, 0, 0, 1);
+        }
+        one.input.live = 0xF;
+        Case out;
+        one.run(true, out);
+        return static_cast<unsigned>(out.color[0]->bytes()[2]);  // A8R8G8B8: red is byte 2
+    };
+    std::vector<float> values;
+    for (unsigned k = 1; k < 256; ++k) {
+        uint32_t low = 0, high = 0x3F800000u;  // the least float in [0, 1] stored as k or more
+        while (low < high) {
+            const uint32_t mid = low + (high - low) / 2;
+            if (stored_red(std::bit_cast<float>(mid)) >= k) high = mid;
+            else low = mid + 1;
+        }
+        ASSERT_EQ(stored_red(std::bit_cast<float>(low)), k);
+        ASSERT_EQ(stored_red(std::bit_cast<float>(low - 1)), k - 1);
+        for (int d = -3; d <= 3; ++d) values.push_back(std::bit_cast<float>(static_cast<uint32_t>(static_cast<int64_t>(low) + d)));
+    }
+    for (int i = -(1 << 12); i <= 3 << 12; ++i) values.push_back(static_cast<float>(i) / static_cast<float>(1 << 13));
+    Random r(20261203);
+    for (const Format f : {Format::A8R8G8B8, Format::X8R8G8B8}) {
+        for (const bool blend : {false, true}) {
+            Case c;
+            c.color[0] = random_surface(r, f, 8, 2);
+            RenderState rs;
+            rs.srgb_write_enable = true;
+            rs.alpha_blend_enable = blend;
+            rs.src_blend = Blend::SrcAlpha;
+            rs.dest_blend = Blend::InvSrcAlpha;
+            c.state = output_merger_state(rs);
+            c.lanes.quad_count = 4;
+            for (unsigned i = 0; i < kLanes; ++i) {
+                c.lanes.x[i] = static_cast<int32_t>(2 * (i / 4) + (i & 1u));
+                c.lanes.y[i] = static_cast<int32_t>(i >> 1 & 1u);
+            }
+            c.input.live = emu::kAllLanes;
+            for (size_t at = 0; at < values.size(); at += 4 * kLanes) {
+                for (unsigned i = 0; i < 4 * kLanes; ++i)
+                    c.batch.render_target(0)[i % 4][i / 4] = i % 4 == 3 && blend ? r.uniform(0, 1) : values[(at + i) % values.size()];
+                ASSERT_TRUE(same_both_ways(c)) << "format " << static_cast<uint32_t>(f) << " blend " << blend << ", values from " << at;
+            }
+        }
+    }
+}
+
 // "Source over" (SRCALPHA, INVSRCALPHA, ADD), which the block path blends in registers, at the
 // blends that land next to a rounding boundary of the store: for stored bytes d and alphas a,
 // sources s within a few ulps of ((k + 0.5) / 255 - d (1 - a)) / a, where one rounding more or

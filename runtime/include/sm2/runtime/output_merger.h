@@ -88,7 +88,7 @@ enum class TargetPath : uint8_t {
     Skip,          // no target, not written by the shader, write mask 0, or not a target
     Unorm8Block,   // UNORM fields in 4-byte texels (8-bit ones: `bytes`), the 16-lane kernels
     Unorm8Block8,  // UNORM fields in 8-byte texels (A16B16G16R16), the 16-lane kernels
-    Unorm8Lanes,   // 8-bit fields in 4-byte texels, without the 16-lane kernels
+    Unorm8Lanes,   // 8-bit fields in 4-byte texels, without the 16-lane kernels; and sRGB writes to them
     FloatBlock,    // 32-bit float channels without blending, copied by the 16-lane kernels
     FloatLanes,    // the same copy, lane by lane
     FloatMerge,    // 16- or 32-bit float channels, blended or halves: read, blended, written a batch at a time
