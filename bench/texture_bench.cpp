@@ -36,6 +36,30 @@ Texture make_texture(Format format) {
     return t;
 }
 
+// Times stage 0 of `sampler` on batches of 4 quads side by side that move across the texture,
+// (du, dv) apart from pixel to pixel in normalized coordinates.
+void time_lookups(benchmark::State& state, TextureSampler& sampler, float du, float dv) {
+    std::array<sm2::emu::FloatLanes, 4> coords{}, out{};
+    sm2::emu::TextureRequest request;
+    request.coordinates = &coords;
+    float base = 0;
+    for (auto _ : state) {
+        for (unsigned q = 0; q < sm2::emu::kBatchQuads; ++q)
+            for (unsigned i = 0; i < 4; ++i) {
+                const float px = static_cast<float>(2 * q + (i & 1)), py = static_cast<float>(i >> 1);
+                coords[0][4 * q + i] = base + px * du;
+                coords[1][4 * q + i] = 0.3f * base + py * dv;
+            }
+        sampler.sample(request, out);
+        benchmark::DoNotOptimize(out);
+        base += 0.0123f;
+        if (base > 4) base -= 4;
+    }
+    state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * sm2::emu::kBatchLanes);
+    state.counters["texels/s"] = benchmark::Counter(static_cast<double>(state.iterations()) * sm2::emu::kBatchLanes,
+                                                     benchmark::Counter::kIsRate);
+}
+
 enum Mode { kPoint, kBilinear, kTrilinear, kAniso16 };
 
 // per_lane: the sampler's per-lane path (the reference) instead of its 16-lane block path.
@@ -64,25 +88,7 @@ void BM_Sample(benchmark::State& state, Format format, Mode mode, bool per_lane 
         break;
     }
     sampler.set_state(0, st);
-    std::array<sm2::emu::FloatLanes, 4> coords{}, out{};
-    sm2::emu::TextureRequest request;
-    request.coordinates = &coords;
-    float base = 0;
-    for (auto _ : state) {
-        for (unsigned q = 0; q < sm2::emu::kBatchQuads; ++q)
-            for (unsigned i = 0; i < 4; ++i) {
-                const float px = static_cast<float>(2 * q + (i & 1)), py = static_cast<float>(i >> 1);
-                coords[0][4 * q + i] = base + px * step_x / 256.0f;
-                coords[1][4 * q + i] = 0.3f * base + py * step_y / 256.0f;
-            }
-        sampler.sample(request, out);
-        benchmark::DoNotOptimize(out);
-        base += 0.0123f;
-        if (base > 4) base -= 4;
-    }
-    state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * sm2::emu::kBatchLanes);
-    state.counters["texels/s"] = benchmark::Counter(static_cast<double>(state.iterations()) * sm2::emu::kBatchLanes,
-                                                     benchmark::Counter::kIsRate);
+    time_lookups(state, sampler, step_x / 256.0f, step_y / 256.0f);
 }
 
 // Bilinear WRAP on a 320x240 A8R8G8B8 texture (one level: a size that is not a power of two, as a
@@ -101,24 +107,7 @@ void BM_SampleWrapNotPow2(benchmark::State& state, bool per_lane) {
     SamplerState st;
     st.mag_filter = st.min_filter = TextureFilter::Linear;
     sampler.set_state(0, st);
-    std::array<sm2::emu::FloatLanes, 4> coords{}, out{};
-    sm2::emu::TextureRequest request;
-    request.coordinates = &coords;
-    float base = 0;
-    for (auto _ : state) {
-        for (unsigned q = 0; q < sm2::emu::kBatchQuads; ++q)
-            for (unsigned i = 0; i < 4; ++i) {
-                coords[0][4 * q + i] = base + static_cast<float>(2 * q + (i & 1)) * 0.75f / 320.0f;
-                coords[1][4 * q + i] = 0.3f * base + static_cast<float>(i >> 1) * 0.75f / 240.0f;
-            }
-        sampler.sample(request, out);
-        benchmark::DoNotOptimize(out);
-        base += 0.0123f;
-        if (base > 4) base -= 4;
-    }
-    state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * sm2::emu::kBatchLanes);
-    state.counters["texels/s"] = benchmark::Counter(static_cast<double>(state.iterations()) * sm2::emu::kBatchLanes,
-                                                     benchmark::Counter::kIsRate);
+    time_lookups(state, sampler, 0.75f / 320.0f, 0.75f / 240.0f);
 }
 BENCHMARK_CAPTURE(BM_SampleWrapNotPow2, A8R8G8B8_bilinear_wrap_320x240, false);
 BENCHMARK_CAPTURE(BM_SampleWrapNotPow2, A8R8G8B8_bilinear_wrap_320x240_per_lane, true);

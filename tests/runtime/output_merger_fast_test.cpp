@@ -249,6 +249,15 @@ Case random_case(Random& r, const std::vector<Format>& formats) {
     return c;
 }
 
+// Four quads side by side in quad row 0 from x = 0 (8x2 pixels), every lane a pixel of them.
+void side_by_side_quads(PixelLanes& lanes) {
+    lanes.quad_count = 4;
+    for (unsigned i = 0; i < kLanes; ++i) {
+        lanes.x[i] = static_cast<int32_t>(2 * (i / 4) + (i & 1u));
+        lanes.y[i] = static_cast<int32_t>(i >> 1 & 1u);
+    }
+}
+
 TEST(OutputMergerFast, RandomBatchesMatchThePerPixelPath) {
     const std::vector<Format> formats = target_formats();
     Random r(20240611);
@@ -289,11 +298,7 @@ TEST(OutputMergerFast, EncodeMatchesOverASweep) {
         const std::vector<float>& values = *list;
         Case c;
         c.color[0] = Surface(f, 8, 2);
-        c.lanes.quad_count = 4;
-        for (unsigned i = 0; i < kLanes; ++i) {
-            c.lanes.x[i] = static_cast<int32_t>(2 * (i / 4) + (i & 1u));
-            c.lanes.y[i] = static_cast<int32_t>(i >> 1 & 1u);
-        }
+        side_by_side_quads(c.lanes);
         c.input.live = emu::kAllLanes;
         for (size_t at = 0; at < values.size(); at += 4 * kLanes) {
             for (unsigned i = 0; i < 4 * kLanes; ++i) {
@@ -314,11 +319,7 @@ TEST(OutputMergerFast, EncodeMatchesOverASweep) {
 TEST(OutputMergerFast, HalfTargetsConvertEveryHalfAndEveryRoundingBoundary) {
     Case c;
     c.color[0] = Surface(Format::A16B16G16R16F, 8, 2);
-    c.lanes.quad_count = 4;
-    for (unsigned i = 0; i < kLanes; ++i) {
-        c.lanes.x[i] = static_cast<int32_t>(2 * (i / 4) + (i & 1u));
-        c.lanes.y[i] = static_cast<int32_t>(i >> 1 & 1u);
-    }
+    side_by_side_quads(c.lanes);
     c.input.live = emu::kAllLanes;
     RenderState rs;
     rs.color_write_enable[0] = 0x1;  // red written, green, blue and alpha read and stored back
@@ -405,11 +406,7 @@ TEST(OutputMergerFast, SrgbWritesMatchThePerPixelPathAtEveryByteBoundary) {
             rs.src_blend = Blend::SrcAlpha;
             rs.dest_blend = Blend::InvSrcAlpha;
             c.state = output_merger_state(rs);
-            c.lanes.quad_count = 4;
-            for (unsigned i = 0; i < kLanes; ++i) {
-                c.lanes.x[i] = static_cast<int32_t>(2 * (i / 4) + (i & 1u));
-                c.lanes.y[i] = static_cast<int32_t>(i >> 1 & 1u);
-            }
+            side_by_side_quads(c.lanes);
             c.input.live = emu::kAllLanes;
             for (size_t at = 0; at < values.size(); at += 4 * kLanes) {
                 for (unsigned i = 0; i < 4 * kLanes; ++i)
@@ -432,11 +429,7 @@ TEST(OutputMergerFast, SourceOverMatchesThePerPixelPathAtRoundingBoundaries) {
     Case c;
     c.state = output_merger_state(rs);
     c.color[0] = Surface(Format::A8R8G8B8, 8, 2);
-    c.lanes.quad_count = 4;
-    for (unsigned i = 0; i < kLanes; ++i) {
-        c.lanes.x[i] = static_cast<int32_t>(2 * (i / 4) + (i & 1u));
-        c.lanes.y[i] = static_cast<int32_t>(i >> 1 & 1u);
-    }
+    side_by_side_quads(c.lanes);
     c.input.live = emu::kAllLanes;
     Random r(7);
     for (int round = 0; round < 4000; ++round) {

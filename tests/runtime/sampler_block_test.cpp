@@ -86,6 +86,17 @@ void bind_block_and_lanes(TextureSampler& block, TextureSampler& lanes, const Te
     lanes.set_block_path(false);
 }
 
+// A random state and filter precision on stage 0 of both samplers; returns the state.
+SamplerState set_random_state(std::mt19937& rng, TextureSampler& block, TextureSampler& lanes) {
+    const SamplerState state = random_state(rng);
+    const FilterPrecision precision = rng() % 4 == 0 ? FilterPrecision::Exact : FilterPrecision::Fixed8;
+    for (TextureSampler* s : {&block, &lanes}) {
+        s->set_state(0, state);
+        s->set_precision(precision);
+    }
+    return state;
+}
+
 // Samples `request` through both samplers: success where every channel of every lane has the
 // same bits (where `nans_alike`, any two NaNs count as the same: which NaN a sum of two gives
 // depends on the operand order a compiler picks), else the first lane that differs.
@@ -174,12 +185,7 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
         lanes.set_texture(0, &texture);
         lanes.set_block_path(false);
         for (unsigned states = 0; states < 8; ++states) {
-            const SamplerState state = random_state(rng);
-            const FilterPrecision precision = rng() % 4 == 0 ? FilterPrecision::Exact : FilterPrecision::Fixed8;
-            for (TextureSampler* s : {&block, &lanes}) {
-                s->set_state(0, state);
-                s->set_precision(precision);
-            }
+            const SamplerState state = set_random_state(rng, block, lanes);
             if (states % 2) block.prepare();  // the draw's way: tables built once
             ASSERT_FALSE(lanes.block_path_applies(0));
             const bool applies = block.block_path_applies(0);
@@ -246,17 +252,10 @@ TEST(SamplerBlockPath, DxtTexturesMatchThePerLanePath) {
         const uint32_t d = volume ? (pow2 ? 1u << (rng() % 4) : 1 + rng() % 5) : 0;
         const Texture texture = random_texture(rng, format, w, h, pow2 ? 0 : 1, d, cube);
         TextureSampler block, lanes;
-        block.set_texture(0, &texture);
+        bind_block_and_lanes(block, lanes, texture);
         block.set_block_avx2(round % 3 == 2);
-        lanes.set_texture(0, &texture);
-        lanes.set_block_path(false);
         for (unsigned states = 0; states < 6; ++states) {
-            const SamplerState state = random_state(rng);
-            const FilterPrecision precision = rng() % 4 == 0 ? FilterPrecision::Exact : FilterPrecision::Fixed8;
-            for (TextureSampler* s : {&block, &lanes}) {
-                s->set_state(0, state);
-                s->set_precision(precision);
-            }
+            (void)set_random_state(rng, block, lanes);
             if (states % 2) block.prepare();
             const bool applies = block.block_path_applies(0);
             for (unsigned k = 0; k < 20; ++k) {
