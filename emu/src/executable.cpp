@@ -5,17 +5,20 @@
 
 #include "sm2/emu/batch.h"
 #include "sm2/emu/instruction_trace.h"
+#include "uniform_steps.h"
 
 namespace sm2::emu {
 
 ConstantFile Executable::bind_constants(std::span<const std::array<float, 4>> application) const {
     ConstantFile file;
+    file.registers.reserve(constant_count());
     file.registers.assign(constant_count_, std::array<float, 4>{0.0f, 0.0f, 0.0f, 0.0f});
     for (size_t i = 0; i < application.size() && i < file.registers.size(); ++i)
         file.registers[i] = application[i];
     // def values hold while the shader is bound, over whatever the application set.
     for (const auto& [index, value] : defs_)
         if (index < file.registers.size()) file.registers[index] = value;
+    bind_derived_constants(prelude_, transcendentals_, file);
     return file;
 }
 

@@ -13,6 +13,7 @@
 #include "numerics.h"
 #include "sm2/emu/engine.h"
 #include "step_kernels.h"
+#include "uniform_steps.h"
 
 namespace sm2::emu {
 
@@ -103,6 +104,11 @@ void check_constants(const Executable& executable, const ConstantFile& constants
 }
 
 }  // namespace
+
+void execute_steps(std::span<const Step> steps, const ConstantFile& constants, Batch& batch,
+                   Transcendentals transcendentals) {
+    Interpreter<float>(constants, batch, nullptr, transcendentals).run(steps);
+}
 
 void execute(const Executable& executable, const ConstantFile& constants, Batch& batch, Sampler* sampler) {
     if (executable.precision() == Precision::Fp64)

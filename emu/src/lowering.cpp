@@ -53,9 +53,11 @@ public:
         const Precision precision = options_.precision.precision;
         const Transcendentals transcendentals =
             precision == Precision::Fp64 ? Transcendentals::Exact : options_.precision.transcendentals;
-        return {Executable(shader_.version(), precision, constant_count_, std::move(steps_),
-                           std::move(defs), executed_, transcendentals),
-                {}};
+        Executable executable(shader_.version(), precision, constant_count_, std::move(steps_), std::move(defs),
+                              executed_, transcendentals);
+        if (options_.hoist_uniform_steps && !options_.keep_dead_code)
+            return {hoist_uniform_steps(executable, options_.outputs_read), {}};
+        return {std::move(executable), {}};
     }
 
 private:

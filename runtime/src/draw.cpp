@@ -85,7 +85,11 @@ Device::ShaderObject::Lowered* lowered_for(Device::ShaderObject& object, const e
     const emu::StaticFlowConstants key = object.shader->flow_key(application);
     for (auto& entry : object.lowered)
         if (entry.flow == key && entry.outputs_read == outputs_read) return &entry;
-    auto lowered = emu::lower(*object.shader, key, lowering_options(object, outputs_read, precision));
+    // The draw's executable computes its uniform steps once per draw (bind_constants()); the
+    // debugger's (debug_shader()) keeps every step as the source has it.
+    emu::LoweringOptions options = lowering_options(object, outputs_read, precision);
+    options.hoist_uniform_steps = true;
+    auto lowered = emu::lower(*object.shader, key, options);
     if (!lowered.executable) {
         error = lowered.error;
         return nullptr;

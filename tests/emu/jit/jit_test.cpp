@@ -17,6 +17,8 @@
 #include <fstream>
 #include <limits>
 #include <random>
+
+#include "emu/src/dead_code.h"
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -100,6 +102,11 @@ public:
     ProgramGenerator(Random& random, Mode mode, unsigned constant_count)
         : random_(random), mode_(mode), constant_count_(constant_count) {}
 
+    // No relatively addressed constant (hoist_uniform_steps() leaves those executables alone),
+    // and sources that are constants or the temporaries r0-r5 more often, so that chains of
+    // uniform steps form.
+    void favour_uniform_steps() { favour_uniform_ = true; }
+
     emu::Executable generate(unsigned step_count) {
         const bool pixel = mode_.rounding != Rounding::Fp32 || chance(random_, 50);
         std::vector<Step> steps;
@@ -135,6 +142,13 @@ private:
         s.swizzle = static_cast<uint8_t>(chance(random_, 30) ? 0xE4 : pick(random_, 256));
         s.negate = chance(random_, 30);
         const unsigned kind = pick(random_, 100);
+        if (favour_uniform_) {
+            s.kind = kind < 40 ? OperandKind::Constant : kind < 45 ? OperandKind::Zero : OperandKind::Lanes;
+            if (s.kind == OperandKind::Constant) s.index = static_cast<uint16_t>(pick(random_, constant_count_));
+            if (s.kind == OperandKind::Lanes)
+                s.index = static_cast<uint16_t>(kind < 85 ? emu::slot::kTempFirst + pick(random_, 6) : pick(random_, emu::slot::kCount));
+            return s;
+        }
         if (kind < 55) {
             s.kind = OperandKind::Lanes;
             s.index = static_cast<uint16_t>(pick(random_, emu::slot::kCount));
@@ -153,6 +167,7 @@ private:
 
     // A destination slot the lowering could write: a temp or an output.
     uint16_t dest_slot() {
+        if (favour_uniform_ && chance(random_, 70)) return static_cast<uint16_t>(emu::slot::kTempFirst + pick(random_, 6));
         if (chance(random_, 70)) return static_cast<uint16_t>(emu::slot::kTempFirst + pick(random_, 12));
         return static_cast<uint16_t>(emu::slot::kPosition + pick(random_, emu::slot::kCount - emu::slot::kPosition));
     }
@@ -268,6 +283,7 @@ private:
     Random& random_;
     Mode mode_;
     unsigned constant_count_;
+    bool favour_uniform_ = false;
 };
 
 // --- a sampler that records what it is asked ---------------------------------------------------
@@ -479,6 +495,65 @@ INSTANTIATE_TEST_SUITE_P(Modes, JitDifferential,
                              std::replace(name.begin(), name.end(), '/', '_');
                              return name;
                          });
+
+// hoist_uniform_steps() against the executable as generated: the hoisted one, its prelude run
+// by bind_constants(), gives the same bits in the interpreter and in compiled code as the
+// original in the interpreter (outputs, killed lanes, texture requests).
+TEST_P(JitDifferential, HoistedUniformStepsGiveTheSameBits) {
+    const Mode mode = GetParam();
+    Random random(0x4015700u + static_cast<uint64_t>(mode.rounding) * 2 +
+                  (mode.transcendentals == emu::Transcendentals::Fast));
+    unsigned hoisted_steps = 0, snapshots = 0, programs = 0;
+    for (unsigned p = 0; p < 200; ++p) {
+        const unsigned constant_count = 8 + pick(random, 24);
+        ProgramGenerator generator(random, mode, constant_count);
+        generator.favour_uniform_steps();
+        // Without its dead steps, as lowering leaves every executable (the hoisted one loses
+        // them too: a mova or texld no output depends on).
+        const emu::Executable generated = generator.generate(4 + pick(random, 28));
+        std::vector<Step> live(generated.steps().begin(), generated.steps().end());
+        emu::remove_dead_steps(live, ~0u);
+        const emu::Executable original(generated.version(), generated.precision(), constant_count, std::move(live), {},
+                                       generated.executed_instructions(), generated.transcendentals());
+        const emu::Executable hoisted = emu::hoist_uniform_steps(original);
+        if (hoisted.prelude().snapshots.empty()) continue;
+        ++programs;
+        hoisted_steps += static_cast<unsigned>(hoisted.prelude().steps.size());
+        snapshots += static_cast<unsigned>(hoisted.prelude().snapshots.size());
+        const emu::ConstantFile application = random_constants(random, constant_count);
+        const emu::ConstantFile bound = hoisted.bind_constants(std::span(application.registers).first(constant_count));
+        ASSERT_EQ(bound.registers.size(), hoisted.constant_count());
+        std::shared_ptr<const emu::jit::CompiledShader> compiled;
+        std::string error;
+        if (emu::jit::available()) {
+            compiled = emu::jit::compile(hoisted, &error);
+            ASSERT_NE(compiled, nullptr) << error;
+        }
+        for (unsigned b = 0; b < 3; ++b) {
+            auto input = std::make_unique<emu::Batch>();
+            randomize(*input, random, constant_count);
+            auto by_original = std::make_unique<emu::Batch>(*input);
+            auto by_hoisted = std::make_unique<emu::Batch>(*input);
+            RecordingSampler original_sampler, hoisted_sampler;
+            emu::execute(original, application, *by_original, &original_sampler);
+            emu::execute(hoisted, bound, *by_hoisted, &hoisted_sampler);
+            ASSERT_TRUE(same_batches(*by_original, *by_hoisted))
+                << mode_name(mode) << " program " << p << " batch " << b << ":\n" << listing(original) << "hoisted:\n" << listing(hoisted);
+            ASSERT_TRUE(same_requests(original_sampler, hoisted_sampler)) << "program " << p;
+            if (compiled) {
+                auto by_jit = std::make_unique<emu::Batch>(*input);
+                RecordingSampler jit_sampler;
+                compiled->run(bound, *by_jit, &jit_sampler);
+                ASSERT_TRUE(same_batches(*by_original, *by_jit)) << mode_name(mode) << " program " << p << " batch " << b << " (jit)";
+                ASSERT_TRUE(same_requests(original_sampler, jit_sampler)) << "program " << p << " (jit)";
+            }
+        }
+    }
+    std::printf("[ uniform  ] %-9s %u programs hoisted %u steps into %u derived constants\n", mode_name(mode), programs,
+                hoisted_steps, snapshots);
+    EXPECT_GE(programs, 40u);
+    EXPECT_GE(hoisted_steps, 3 * programs);
+}
 
 // --- the sample shaders -----------------------------------------------------------------------
 

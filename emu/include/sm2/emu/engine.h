@@ -109,6 +109,10 @@ struct LoweringOptions {
     uint32_t outputs_read = ~0u;
     // Keep steps no output depends on (for tests that look at temps).
     bool keep_dead_code = false;
+    // Move the steps whose sources are the same on every lane into the executable's prelude,
+    // computed once per draw by bind_constants() (hoist_uniform_steps()). Not with
+    // keep_dead_code (the debugger shows every step), fp64, or constants read relatively.
+    bool hoist_uniform_steps = false;
 };
 
 struct LowerResult {
@@ -118,6 +122,16 @@ struct LowerResult {
 
 [[nodiscard]] LowerResult lower(const Shader& shader, const StaticFlowConstants& flow,
                                 const LoweringOptions& options = {});
+
+// `executable` with its uniform steps moved to a prelude that bind_constants() runs once per
+// draw: a step all of whose sources are constants, or components of temporaries that only such
+// steps wrote, computes the same value on every lane, so each later step that reads such a
+// temporary reads a derived constant instead (the value the prelude leaves in it at that
+// point), and the uniform steps nothing else reads are removed (`outputs_read` as in
+// LoweringOptions). The same bits on every lane, in every mode but fp64 (whose temporaries hold
+// doubles, which a float constant cannot): returned unchanged there, with a relatively
+// addressed constant (the derived registers would lie in its range), or with nothing to hoist.
+[[nodiscard]] Executable hoist_uniform_steps(const Executable& executable, uint32_t outputs_read = ~0u);
 
 // Runs every step of `executable` over all lanes of `batch`. `sampler` may be null for shaders
 // without texture instructions. A float batch runs fp32/fp24/fp16 executables; an fp64

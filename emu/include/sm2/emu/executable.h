@@ -54,6 +54,21 @@ struct Step {
     friend bool operator==(const Step&, const Step&) = default;
 };
 
+// The steps of an executable whose every source holds one value on all lanes (constants, and
+// temporaries only such steps wrote), run once per draw by bind_constants() instead of once per
+// batch (uniform_steps.cpp). A snapshot is a temporary as the first `after` steps leave it: the
+// derived constant that the executable's steps read in its place.
+struct UniformSnapshot {
+    uint16_t slot = 0;
+    uint32_t after = 0;
+    friend bool operator==(const UniformSnapshot&, const UniformSnapshot&) = default;
+};
+struct UniformPrelude {
+    std::vector<Step> steps;
+    std::vector<UniformSnapshot> snapshots;  // derived constant j is constant register count + j
+    friend bool operator==(const UniformPrelude&, const UniformPrelude&) = default;
+};
+
 // Float constants as one draw sees them: the application's values with the shader's def
 // values written over them (the application's stored values are not changed).
 struct ConstantFile {
@@ -64,10 +79,11 @@ class Executable {
 public:
     Executable(isa::ShaderVersion version, Precision precision, unsigned constant_count,
                std::vector<Step> steps, std::vector<std::pair<unsigned, std::array<float, 4>>> defs,
-               uint32_t executed_instructions, Transcendentals transcendentals = Transcendentals::Exact)
+               uint32_t executed_instructions, Transcendentals transcendentals = Transcendentals::Exact,
+               UniformPrelude prelude = {})
         : version_(version), precision_(precision), transcendentals_(transcendentals),
           constant_count_(constant_count), steps_(std::move(steps)), defs_(std::move(defs)),
-          executed_instructions_(executed_instructions) {
+          executed_instructions_(executed_instructions), prelude_(std::move(prelude)) {
         summarize_register_use();
     }
 
@@ -75,7 +91,15 @@ public:
     [[nodiscard]] Precision precision() const { return precision_; }
     [[nodiscard]] Transcendentals transcendentals() const { return transcendentals_; }
     [[nodiscard]] std::span<const Step> steps() const { return steps_; }
-    [[nodiscard]] unsigned constant_count() const { return constant_count_; }
+    // The constant file's size: the application's registers, then the derived constants of the
+    // prelude's snapshots.
+    [[nodiscard]] unsigned constant_count() const {
+        return constant_count_ + static_cast<unsigned>(prelude_.snapshots.size());
+    }
+    // The application's constant registers alone (D3DCAPS9's count for the profile).
+    [[nodiscard]] unsigned application_constant_count() const { return constant_count_; }
+    // The uniform steps bind_constants() runs once (empty unless lowering hoisted some).
+    [[nodiscard]] const UniformPrelude& prelude() const { return prelude_; }
     // Instructions the original shader executes for this draw (the limit lowering checked).
     [[nodiscard]] uint32_t executed_instructions() const { return executed_instructions_; }
     // Per lane slot (slot::k*), the components the steps read / write (bit c = component c).
@@ -83,10 +107,10 @@ public:
     // (inputs), and which outputs the shader produces.
     [[nodiscard]] const std::array<uint8_t, kSlotCount>& components_read() const { return components_read_; }
     [[nodiscard]] const std::array<uint8_t, kSlotCount>& components_written() const { return components_written_; }
-    // Once per draw: the application's constants (missing ones read (0,0,0,0)) with the
-    // shader's def values on top.
     // The shader's def values (register, value), in the order bind_constants() applies them.
     [[nodiscard]] const std::vector<std::pair<unsigned, std::array<float, 4>>>& defs() const { return defs_; }
+    // Once per draw: the application's constants (missing ones read (0,0,0,0)) with the
+    // shader's def values on top, then the prelude's derived constants.
     [[nodiscard]] ConstantFile bind_constants(std::span<const std::array<float, 4>> application = {}) const;
     // One line per step ("dp4 oPos.x, v0, c0"), for tests and debugging.
     [[nodiscard]] std::string describe() const;
@@ -101,6 +125,7 @@ private:
     std::vector<Step> steps_;
     std::vector<std::pair<unsigned, std::array<float, 4>>> defs_;
     uint32_t executed_instructions_;
+    UniformPrelude prelude_;
     std::array<uint8_t, kSlotCount> components_read_{};
     std::array<uint8_t, kSlotCount> components_written_{};
 };
