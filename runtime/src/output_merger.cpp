@@ -289,6 +289,15 @@ bool distinct_pixels(const std::array<uint32_t, kLanes>& key, bool quad_order) {
     return same == kLanes;
 }
 
+// Each lane's texel's byte offset in `surface` (texels of `texel_bytes`), for merge_unorm8() and
+// merge_float(); only the lanes they write are read.
+std::array<size_t, kLanes> texel_offsets(const PixelLanes& lanes, const Surface& surface, size_t texel_bytes) {
+    std::array<size_t, kLanes> offset;
+    for (unsigned l = 0; l < kLanes; ++l)
+        offset[l] = static_cast<size_t>(lanes.y[l]) * surface.row_pitch() + static_cast<size_t>(lanes.x[l]) * texel_bytes;
+    return offset;
+}
+
 // Blending, write mask and store for the lanes in `write` of one fast-path target (every lane
 // inside the surface). src: the shader colour of each lane.
 // srgb: an sRGB write (render target 0 under SRGBWRITEENABLE): the colour channels blend in
@@ -303,7 +312,8 @@ void merge_unorm8(const BlendState& b, const Unorm8Texel& fmt, Surface& surface,
         std::array<uint32_t, kLanes> stored{};
         for (unsigned l = 0; l < kLanes; ++l)
             if (write >> l & 1u) std::memcpy(&stored[l], bytes + offset[l], 4);
-        const std::array<float, 256>& to_linear = srgb_to_linear_table();
+        // (The sRGB tables only where they are read: each is a guarded static.)
+        const std::array<float, 256>* to_linear = srgb ? &srgb_to_linear_table() : nullptr;
         for (unsigned c = 0; c < 4; ++c) {
             if (fmt.shift[c] < 0) {
                 dst[c] = linear[c] = Lanes(fmt.missing[c]);
@@ -313,7 +323,7 @@ void merge_unorm8(const BlendState& b, const Unorm8Texel& fmt, Surface& surface,
             for (unsigned l = 0; l < kLanes; ++l) dst[c].v[l] = decode_unorm8(stored[l] >> shift & 0xFFu);
             linear[c] = dst[c];
             if (srgb && c < 3)
-                for (unsigned l = 0; l < kLanes; ++l) linear[c].v[l] = to_linear[stored[l] >> shift & 0xFFu];
+                for (unsigned l = 0; l < kLanes; ++l) linear[c].v[l] = (*to_linear)[stored[l] >> shift & 0xFFu];
         }
     }
     Rgba<Lanes> clamped;
@@ -327,12 +337,12 @@ void merge_unorm8(const BlendState& b, const Unorm8Texel& fmt, Surface& surface,
     }
     const Rgba<Lanes>& out = b.enable ? blended : clamped;  // in [0, 1], as is dst
     std::array<uint32_t, kLanes> packed{};
-    const std::array<float, 256>& thresholds = linear_to_srgb_byte_thresholds();
+    const std::array<float, 256>* thresholds = srgb ? &linear_to_srgb_byte_thresholds() : nullptr;
     for (unsigned c = 0; c < 4; ++c) {
         if (fmt.shift[c] < 0) continue;
         const auto shift = static_cast<unsigned>(fmt.shift[c]);
         if (srgb && c < 3 && (mask >> c & 1u)) {
-            for (unsigned l = 0; l < kLanes; ++l) packed[l] |= linear_to_srgb_byte(out[c].v[l], thresholds) << shift;
+            for (unsigned l = 0; l < kLanes; ++l) packed[l] |= linear_to_srgb_byte(out[c].v[l], *thresholds) << shift;
             continue;
         }
         // A masked channel stores what it read (which encodes back to the same byte).
@@ -345,7 +355,6 @@ void merge_unorm8(const BlendState& b, const Unorm8Texel& fmt, Surface& surface,
 // half.h's conversions for 16 lanes at once, the same bits: GCC vectors of 16 32-bit lanes
 // (one AVX-512 register, two AVX2 ones in the clones below), branch-free.
 typedef uint32_t Words16 __attribute__((vector_size(4 * kLanes)));
-typedef int32_t Ints16 __attribute__((vector_size(4 * kLanes)));
 
 // half_to_float() of the halves in the low 16 bits of each lane: normal values rebiased,
 // infinities and NaNs with their payload as it is, denormals as their exact value m * 2^-24.
@@ -724,19 +733,12 @@ emu::LaneMask merge(const OutputMergerState& s, const RenderTargets& targets, co
             else avx512_block ? run_kernel(avx512::merge_unorm8_block<1, false>) : run_kernel(avx2::merge_unorm8_block<1, false>);
             continue;
         }
-        case TargetPath::Unorm8Lanes: {
-            std::array<size_t, kLanes> offset;  // used for the lanes in `write` only
-            for (unsigned l = 0; l < kLanes; ++l)
-                offset[l] = static_cast<size_t>(lanes.y[l]) * surface->row_pitch() + static_cast<size_t>(lanes.x[l]) * 4;
-            merge_unorm8(s.blend, unorm8_texel(*target.info), *surface, mask, src, offset, write, srgb);
+        case TargetPath::Unorm8Lanes:
+            merge_unorm8(s.blend, unorm8_texel(*target.info), *surface, mask, src, texel_offsets(lanes, *surface, 4), write, srgb);
             continue;
-        }
         case TargetPath::FloatMerge: {
             const FloatTexel& fmt = float_texel(*target.info);
-            std::array<size_t, kLanes> offset;  // used for the lanes in `write` only
-            for (unsigned l = 0; l < kLanes; ++l)
-                offset[l] = static_cast<size_t>(lanes.y[l]) * surface->row_pitch() + static_cast<size_t>(lanes.x[l]) * fmt.bytes;
-            merge_float(s.blend, fmt, *surface, mask, src, offset, write);
+            merge_float(s.blend, fmt, *surface, mask, src, texel_offsets(lanes, *surface, fmt.bytes), write);
             continue;
         }
         case TargetPath::FloatBlock:

@@ -1,7 +1,6 @@
 // Texture resources and box-filtered mip generation.
 #include "sm2/runtime/texture.h"
 
-#include <algorithm>
 #include <array>
 #include <atomic>
 #include <mutex>

@@ -152,6 +152,29 @@ emu::TextureRequest random_request(std::mt19937& rng, std::array<emu::FloatLanes
     return r;
 }
 
+// `states` random sampler states set on both samplers (every other one prepared, the draw's way:
+// tables built once), each with 20 random requests compared by same_texels() (any two NaNs
+// alike: random R32F texels include NaNs, and the engine stores every NaN as one pattern);
+// `count(state, applies)` is called for each request. The first difference fails it.
+template <typename Count>
+::testing::AssertionResult same_random_lookups(std::mt19937& rng, TextureSampler& block, TextureSampler& lanes,
+                                               unsigned states, Count count) {
+    for (unsigned s = 0; s < states; ++s) {
+        const SamplerState state = set_random_state(rng, block, lanes);
+        if (s % 2) block.prepare();
+        if (lanes.block_path_applies(0)) return ::testing::AssertionFailure() << "the per-lane sampler took the block path";
+        const bool applies = block.block_path_applies(0);
+        for (unsigned k = 0; k < 20; ++k) {
+            std::array<emu::FloatLanes, 4> coords;
+            const emu::TextureRequest request = random_request(rng, coords);
+            count(state, applies);
+            if (auto same = same_texels(block, lanes, request, true); !same)
+                return same << " (state " << s << ", request " << k << ", block path " << applies << ")";
+        }
+    }
+    return ::testing::AssertionSuccess();
+}
+
 TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
     std::mt19937 rng(20261124);
     // 8-, 4-, 2- and 1-byte texels; a quarter of the textures are volumes, a quarter cube maps.
@@ -184,40 +207,31 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
         block.set_block_avx2(round % 3 == 2);  // on an AVX-512 CPU, a third of the rounds run the AVX2 instance
         lanes.set_texture(0, &texture);
         lanes.set_block_path(false);
-        for (unsigned states = 0; states < 8; ++states) {
-            const SamplerState state = set_random_state(rng, block, lanes);
-            if (states % 2) block.prepare();  // the draw's way: tables built once
-            ASSERT_FALSE(lanes.block_path_applies(0));
-            const bool applies = block.block_path_applies(0);
-            for (unsigned k = 0; k < 20; ++k) {
-                std::array<emu::FloatLanes, 4> coords;
-                const emu::TextureRequest request = random_request(rng, coords);
-                ++total;
-                block_requests += applies ? 1 : 0;
-                volume_block_requests += applies && volume ? 1 : 0;
-                narrow_block_requests += applies && narrow ? 1 : 0;
-                wide_block_requests += applies && wide ? 1 : 0;
-                cube_block_requests += applies && cube ? 1 : 0;
-                half_block_requests += applies && (format == Format::R16F || format == Format::G16R16F ||
-                                                   format == Format::A16B16G16R16F) ? 1 : 0;
-                const bool is_signed = format == Format::V8U8 || format == Format::L6V5U5 || format == Format::X8L8V8U8 ||
-                                       format == Format::Q8W8V8U8 || format == Format::V16U16 ||
-                                       format == Format::A2W10V10U10 || format == Format::Q16W16V16U16;
-                signed_block_requests += applies && is_signed ? 1 : 0;
-                srgb_block_requests += applies && state.srgb_texture && format_info(format)->srgb ? 1 : 0;
-                // WRAP or MIRROR on a size that is not a power of two: the remainder's addressing.
-                const auto periodic = [](TextureAddress m) { return m == TextureAddress::Wrap || m == TextureAddress::Mirror; };
-                periodic_block_requests += applies && !cube && !(std::has_single_bit(w) && std::has_single_bit(h)) &&
-                                                   (periodic(state.address_u) || periodic(state.address_v))
-                                               ? 1
-                                               : 0;
-                anisotropic_block_requests +=
-                    applies && state.min_filter == TextureFilter::Anisotropic && state.max_anisotropy > 1 ? 1 : 0;
-                // (R32F's random texels include NaNs, and the engine stores every NaN as one pattern.)
-                ASSERT_TRUE(same_texels(block, lanes, request, true))
-                    << "round " << round << " (block path " << applies << ", " << w << "x" << h << ")";
-            }
-        }
+        const auto count = [&](const SamplerState& state, bool applies) {
+            ++total;
+            block_requests += applies ? 1 : 0;
+            volume_block_requests += applies && volume ? 1 : 0;
+            narrow_block_requests += applies && narrow ? 1 : 0;
+            wide_block_requests += applies && wide ? 1 : 0;
+            cube_block_requests += applies && cube ? 1 : 0;
+            half_block_requests += applies && (format == Format::R16F || format == Format::G16R16F ||
+                                               format == Format::A16B16G16R16F) ? 1 : 0;
+            const bool is_signed = format == Format::V8U8 || format == Format::L6V5U5 || format == Format::X8L8V8U8 ||
+                                   format == Format::Q8W8V8U8 || format == Format::V16U16 ||
+                                   format == Format::A2W10V10U10 || format == Format::Q16W16V16U16;
+            signed_block_requests += applies && is_signed ? 1 : 0;
+            srgb_block_requests += applies && state.srgb_texture && format_info(format)->srgb ? 1 : 0;
+            // WRAP or MIRROR on a size that is not a power of two: the remainder's addressing.
+            const auto periodic = [](TextureAddress m) { return m == TextureAddress::Wrap || m == TextureAddress::Mirror; };
+            periodic_block_requests += applies && !cube && !(std::has_single_bit(w) && std::has_single_bit(h)) &&
+                                               (periodic(state.address_u) || periodic(state.address_v))
+                                           ? 1
+                                           : 0;
+            anisotropic_block_requests +=
+                applies && state.min_filter == TextureFilter::Anisotropic && state.max_anisotropy > 1 ? 1 : 0;
+        };
+        ASSERT_TRUE(same_random_lookups(rng, block, lanes, 8, count))
+            << "round " << round << " (" << w << "x" << h << ")";
     }
     // Without a block path the comparison is trivially equal; with one, a good share must have
     // taken it for the test to mean anything.
@@ -254,19 +268,11 @@ TEST(SamplerBlockPath, DxtTexturesMatchThePerLanePath) {
         TextureSampler block, lanes;
         bind_block_and_lanes(block, lanes, texture);
         block.set_block_avx2(round % 3 == 2);
-        for (unsigned states = 0; states < 6; ++states) {
-            (void)set_random_state(rng, block, lanes);
-            if (states % 2) block.prepare();
-            const bool applies = block.block_path_applies(0);
-            for (unsigned k = 0; k < 20; ++k) {
-                std::array<emu::FloatLanes, 4> coords;
-                const emu::TextureRequest request = random_request(rng, coords);
-                ++total;
-                block_requests += applies ? 1 : 0;
-                ASSERT_TRUE(same_texels(block, lanes, request, true))
-                    << "round " << round << " (block path " << applies << ", " << w << "x" << h << ")";
-            }
-        }
+        const auto count = [&](const SamplerState&, bool applies) {
+            ++total;
+            block_requests += applies ? 1 : 0;
+        };
+        ASSERT_TRUE(same_random_lookups(rng, block, lanes, 6, count)) << "round " << round << " (" << w << "x" << h << ")";
     }
     if (cpu_runs_block_path()) {
         EXPECT_GT(block_requests, total / 2);
