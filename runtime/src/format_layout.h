@@ -170,6 +170,19 @@ Float4 decode(const std::byte* texel) {
             decode_channel(Lay.rgba[2], texel), decode_channel(Lay.rgba[3], texel)};
 }
 
+// Whether every stored channel is an 8-bit UNORM on a byte boundary, each in its own byte
+// (A8R8G8B8, X8R8G8B8, A8B8G8R8, A8, ...): the render-target formats a frame is written in.
+constexpr bool bytewise_unorm8(const Layout& lay) {
+    unsigned used = 0;
+    for (const auto& c : lay.rgba) {
+        if (c.type == Type::Zero || c.type == Type::One) continue;
+        if (c.type != Type::Unorm || c.bits != 8 || c.shift % 8 != 0 || c.shift >= 32) return false;
+        if (used >> (c.shift / 8) & 1u) return false;  // luminance: one byte feeds several channels
+        used |= 1u << (c.shift / 8);
+    }
+    return true;
+}
+
 // round(x) with halves up, for x already clamped to a small non-negative range.
 inline uint32_t round_to_uint(double x) { return static_cast<uint32_t>(std::floor(x + 0.5)); }
 

@@ -96,19 +96,6 @@ Float4 decode_fn(const std::byte* texel) {
     return layout::decode<F>(texel);
 }
 
-// Whether every stored channel is an 8-bit UNORM on a byte boundary, each in its own byte
-// (A8R8G8B8, X8R8G8B8, A8B8G8R8, A8, ...): the render-target formats a frame is written in.
-constexpr bool bytewise_unorm8(const layout::Layout& lay) {
-    unsigned used = 0;
-    for (const auto& c : lay.rgba) {
-        if (c.type == layout::Type::Zero || c.type == layout::Type::One) continue;
-        if (c.type != layout::Type::Unorm || c.bits != 8 || c.shift % 8 != 0 || c.shift >= 32) return false;
-        if (used >> (c.shift / 8) & 1u) return false;  // luminance: one byte feeds several channels
-        used |= 1u << (c.shift / 8);
-    }
-    return true;
-}
-
 // The layout is a constant here, so each format gets its own encoder; the bytewise 8-bit ones
 // take a direct path with the same rounding as layout::encode (round(clamp(v) * 255), halves up,
 // NaN -> 0, in double).
@@ -116,7 +103,7 @@ template <size_t I>
 void encode_fn(const Float4& value, std::byte* texel) {
     constexpr layout::Layout Lay = layout::layout_of(kFormats[I].format);
     constexpr unsigned kBytes = kFormats[I].bytes;
-    if constexpr (bytewise_unorm8(Lay) && kBytes <= 4) {
+    if constexpr (layout::bytewise_unorm8(Lay) && kBytes <= 4) {
         uint32_t packed = 0;
         for (unsigned i = 0; i < 4; ++i) {
             if (Lay.rgba[i].type != layout::Type::Unorm) continue;

@@ -2,12 +2,14 @@
 #include "sm2/runtime/texture.h"
 
 #include <array>
+#include <cstring>
 #include <atomic>
 #include <mutex>
 #include <stdexcept>
 #include <string>
 
 #include "dxt.h"
+#include "format_layout.h"
 
 namespace sm2::runtime {
 
@@ -142,14 +144,92 @@ std::shared_ptr<const Texture> Texture::decoded_dxt() const {
 
 uint64_t Texture::set_decoded_dxt_budget(uint64_t bytes) { return decoded_dxt_budget.exchange(bytes); }
 
+namespace {
+
+// Four bytes of a texel and their values on the way (GCC vectors: SSE2 or wider).
+typedef uint8_t Bytes4 __attribute__((vector_size(4)));
+typedef int32_t Ints4 __attribute__((vector_size(16)));
+typedef float Floats4 __attribute__((vector_size(16)));
+typedef double Doubles4 __attribute__((vector_size(32)));
+
+// The source index of a box filter's tap: the last texel of a side of 1 (or an odd side's end).
+uint32_t tap_index(uint32_t i, uint32_t size) { return i < size ? i : size - 1; }
+
+// generate_mips()'s box filter for a level of texels whose every stored channel is an 8-bit
+// UNORM in its own byte (layout::bytewise_unorm8: A8R8G8B8, X8R8G8B8, A8B8G8R8, A8, ...), byte
+// by byte with Surface::read()'s and Surface::write()'s values instead of a Float4 a tap: each
+// tap's byte as read() decodes it (v / 255 in float, from a table), the taps summed in the
+// generic loop's order and scaled in float, the sum stored as the encoder rounds it (round(255 v)
+// in double, halves up); a byte no channel stores is 0, as the encoder leaves it.
+void box_filter_bytes(const layout::Layout& lay, unsigned texel_bytes, const Surface& src, Surface& dst) {
+    static const std::array<float, 256> decoded = [] {
+        std::array<float, 256> table{};
+        for (unsigned v = 0; v < 256; ++v) table[v] = static_cast<float>(v) / 255.0f;
+        return table;
+    }();
+    std::array<bool, 4> stored{};
+    for (const layout::Channel& c : lay.rgba)
+        if (c.type == layout::Type::Unorm) stored[c.shift / 8] = true;
+    const Ints4 stored_mask{stored[0] ? -1 : 0, stored[1] ? -1 : 0, stored[2] ? -1 : 0, stored[3] ? -1 : 0};
+    const uint32_t zn = src.depth() > 1 ? 2 : 1;
+    const float scale = 1.0f / static_cast<float>(4 * zn);
+    const std::byte* const in = src.bytes().data();
+    std::byte* const out = dst.bytes().data();
+    for (uint32_t z = 0; z < dst.depth(); ++z)
+        for (uint32_t y = 0; y < dst.height(); ++y)
+            for (uint32_t x = 0; x < dst.width(); ++x) {
+                // The taps in the generic loop's order: z, then y, then x.
+                std::array<const std::byte*, 8> taps{};
+                unsigned count = 0;
+                for (uint32_t dz = 0; dz < zn; ++dz)
+                    for (uint32_t dy = 0; dy < 2; ++dy)
+                        for (uint32_t dx = 0; dx < 2; ++dx)
+                            taps[count++] = in + tap_index(2 * z + dz, src.depth()) * src.slice_pitch() +
+                                            tap_index(2 * y + dy, src.height()) * src.row_pitch() +
+                                            size_t{tap_index(2 * x + dx, src.width())} * texel_bytes;
+                std::byte* const texel = out + z * dst.slice_pitch() + y * dst.row_pitch() + size_t{x} * texel_bytes;
+                if (texel_bytes == 4) {
+                    // The four bytes at once, the same operations (v / 255 as the table's
+                    // entries are made; a conversion of x + 0.5 >= 0 truncates as floor does).
+                    Floats4 sum{0.0f, 0.0f, 0.0f, 0.0f};
+                    for (unsigned t = 0; t < count; ++t) {
+                        Bytes4 tap;
+                        std::memcpy(&tap, taps[t], 4);
+                        sum += __builtin_convertvector(tap, Floats4) / 255.0f;
+                    }
+                    Doubles4 scaled = __builtin_convertvector(sum * scale, Doubles4) * 255.0;
+                    scaled = scaled > 255.0 ? Doubles4{255.0, 255.0, 255.0, 255.0} : scaled;
+                    const Ints4 rounded = __builtin_convertvector(scaled + 0.5, Ints4) & stored_mask;
+                    const Bytes4 bytes = __builtin_convertvector(rounded, Bytes4);
+                    std::memcpy(texel, &bytes, 4);
+                    continue;
+                }
+                for (unsigned b = 0; b < texel_bytes; ++b) {
+                    float sum = 0.0f;
+                    for (unsigned t = 0; t < count; ++t) sum += decoded[static_cast<uint8_t>(taps[t][b])];
+                    const double scaled = static_cast<double>(sum * scale) * 255.0;
+                    const double clamped = scaled > 255.0 ? 255.0 : scaled;  // (never below 0, never NaN)
+                    texel[b] = stored[b] ? static_cast<std::byte>(layout::round_to_uint(clamped)) : std::byte{0};
+                }
+            }
+}
+
+}  // namespace
+
 void Texture::generate_mips() {
     const FormatInfo* info = format_info(format_);
     if (info == nullptr || info->kind == FormatKind::Compressed) bad("mip generation needs an uncompressed format");
+    const layout::Layout lay = layout::layout_of(format_);
+    const bool bytes = lay.valid && layout::bytewise_unorm8(lay) && info->bytes <= 4;
     for (uint32_t f = 0; f < faces(); ++f) {
         for (uint32_t l = 1; l < levels_; ++l) {
             const Surface& src = surface(l - 1, f);
             Surface& dst = surface(l, f);
-            auto src_index = [](uint32_t i, uint32_t size) { return i < size ? i : size - 1; };
+            if (bytes) {
+                box_filter_bytes(lay, info->bytes, src, dst);
+                continue;
+            }
+            const auto src_index = tap_index;
             for (uint32_t z = 0; z < dst.depth(); ++z)
                 for (uint32_t y = 0; y < dst.height(); ++y)
                     for (uint32_t x = 0; x < dst.width(); ++x) {

@@ -1,6 +1,8 @@
 // Surfaces and textures: memory layout, level sizes, limits, box-filtered mips.
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "sm2/runtime/surface.h"
 #include "sm2/runtime/texture.h"
 
@@ -93,6 +95,81 @@ TEST(Texture, BoxFilterMips) {
 
     Texture d = Texture::create_2d(Format::DXT1, 8, 8);
     EXPECT_THROW(d.generate_mips(), std::invalid_argument);
+}
+
+// The box filter on texels of 8-bit UNORM bytes (Texture::generate_mips()'s byte path), by
+// hand: each byte the rounded mean of its taps, a byte no channel stores written 0.
+TEST(Texture, BoxFilterMipsOfBytes) {
+    Texture t = Texture::create_2d(Format::A8R8G8B8, 2, 2);
+    // Bytes B, G, R, A of the four texels: B 0 1 2 2 (mean 1.25 -> 1), G 255 255 255 254
+    // (254.75 -> 255), R 10 20 30 41 (25.25 -> 25), A 0 0 1 2 (0.75 -> 1).
+    const uint8_t level0[16] = {0, 255, 10, 0, 1, 255, 20, 0, 2, 255, 30, 1, 2, 254, 41, 2};
+    for (unsigned i = 0; i < 16; ++i) t.surface(0).bytes()[i] = static_cast<std::byte>(level0[i]);
+    t.generate_mips();
+    const uint8_t expected[4] = {1, 255, 25, 1};
+    for (unsigned i = 0; i < 4; ++i) EXPECT_EQ(t.surface(1).bytes()[i], static_cast<std::byte>(expected[i])) << "byte " << i;
+
+    // X8R8G8B8: the X byte of a mip is 0 whatever level 0 holds there; a volume's 8 taps:
+    // B 0 x4 and 255 x4 (127.5 -> 128), G 3 x8 (3), R 0 x7 and 4 (0.5 -> 1).
+    Texture v = Texture::create_volume(Format::X8R8G8B8, 2, 2, 2);
+    auto& bytes = v.surface(0).bytes();
+    for (unsigned texel = 0; texel < 8; ++texel) {
+        bytes[4 * texel + 0] = static_cast<std::byte>(texel % 2 ? 255 : 0);
+        bytes[4 * texel + 1] = std::byte{3};
+        bytes[4 * texel + 2] = static_cast<std::byte>(texel == 7 ? 4 : 0);
+        bytes[4 * texel + 3] = std::byte{0xFF};
+    }
+    v.generate_mips();
+    const uint8_t volume_expected[4] = {128, 3, 1, 0};
+    for (unsigned i = 0; i < 4; ++i)
+        EXPECT_EQ(v.surface(1).bytes()[i], static_cast<std::byte>(volume_expected[i])) << "byte " << i;
+}
+
+// The byte path against the box filter written with Surface::read() and write() (the filter of
+// every other format): 2D textures of odd and even sizes, cube maps and volumes of random
+// bytes, every level the same bytes.
+TEST(Texture, BoxFilterMipsOfBytesMatchTheFloatFilter) {
+    std::mt19937 rng(20261203);
+    const Format formats[] = {Format::A8R8G8B8, Format::X8R8G8B8, Format::A8B8G8R8, Format::X8B8G8R8, Format::A8};
+    unsigned levels_compared = 0;
+    for (unsigned round = 0; round < 40; ++round) {
+        const Format format = formats[round % std::size(formats)];
+        const unsigned kind = rng() % 3;
+        // Powers of two (the sizes with mips), unequal sides: a side of 1 repeats its texel.
+        const uint32_t w = 1u << rng() % 7, h = kind == 1 ? w : 1u << rng() % 7, d = 1u << rng() % 4;
+        Texture t = kind == 0   ? Texture::create_2d(format, w, h)
+                    : kind == 1 ? Texture::create_cube(format, w)
+                                : Texture::create_volume(format, w, h, d);
+        for (uint32_t f = 0; f < t.faces(); ++f)
+            for (std::byte& b : t.surface(0, f).bytes()) b = static_cast<std::byte>(rng());
+        Texture reference = t;
+        t.generate_mips();
+        for (uint32_t f = 0; f < t.faces(); ++f)
+            for (uint32_t l = 1; l < t.levels(); ++l) {
+                const Surface& src = reference.surface(l - 1, f);
+                Surface& dst = reference.surface(l, f);
+                const auto at = [](uint32_t i, uint32_t size) { return i < size ? i : size - 1; };
+                const uint32_t zn = src.depth() > 1 ? 2 : 1;
+                for (uint32_t z = 0; z < dst.depth(); ++z)
+                    for (uint32_t y = 0; y < dst.height(); ++y)
+                        for (uint32_t x = 0; x < dst.width(); ++x) {
+                            Float4 sum{0, 0, 0, 0};
+                            for (uint32_t dz = 0; dz < zn; ++dz)
+                                for (uint32_t dy = 0; dy < 2; ++dy)
+                                    for (uint32_t dx = 0; dx < 2; ++dx) {
+                                        const Float4 tap = src.read(at(2 * x + dx, src.width()),
+                                                                    at(2 * y + dy, src.height()), at(2 * z + dz, src.depth()));
+                                        for (unsigned c = 0; c < 4; ++c) sum[c] += tap[c];
+                                    }
+                            for (float& c : sum) c *= 1.0f / static_cast<float>(4 * zn);
+                            dst.write(x, y, z, sum);
+                        }
+                ASSERT_EQ(t.surface(l, f).bytes(), dst.bytes())
+                    << "round " << round << ", " << w << "x" << h << " kind " << kind << ", face " << f << ", level " << l;
+                ++levels_compared;
+            }
+    }
+    EXPECT_GT(levels_compared, 200u);
 }
 
 }  // namespace
