@@ -648,13 +648,13 @@ CallResult Device::generate_mip_sub_levels(const std::string& texture) {
     auto r = find(texture);
     if (!r || r->kind != Resource::Kind::Texture)
         return CallResult::fail("GenerateMipSubLevels: '" + texture + "' is not a texture");
-    Texture copy = r->texture;
+    // In place: generate_mips() refuses a format before it writes a texel (a copy to keep the
+    // levels on failure cost each call the whole texture).
     try {
-        copy.generate_mips();
+        r->texture.generate_mips();
     } catch (const std::exception& e) {
         return CallResult::fail(std::string("GenerateMipSubLevels: ") + e.what());
     }
-    r->texture = std::move(copy);
     return {};
 }
 

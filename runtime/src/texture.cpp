@@ -161,6 +161,8 @@ uint32_t tap_index(uint32_t i, uint32_t size) { return i < size ? i : size - 1; 
 // tap's byte as read() decodes it (v / 255 in float, from a table), the taps summed in the
 // generic loop's order and scaled in float, the sum stored as the encoder rounds it (round(255 v)
 // in double, halves up); a byte no channel stores is 0, as the encoder leaves it.
+// (Cloned for AVX2: SSE2 alone has no byte-to-int widening, which it spelled byte by byte.)
+__attribute__((target_clones("arch=x86-64-v3", "default")))
 void box_filter_bytes(const layout::Layout& lay, unsigned texel_bytes, const Surface& src, Surface& dst) {
     static const std::array<float, 256> decoded = [] {
         std::array<float, 256> table{};
@@ -193,8 +195,10 @@ void box_filter_bytes(const layout::Layout& lay, unsigned texel_bytes, const Sur
                     // entries are made; a conversion of x + 0.5 >= 0 truncates as floor does).
                     Floats4 sum{0.0f, 0.0f, 0.0f, 0.0f};
                     for (unsigned t = 0; t < count; ++t) {
-                        Bytes4 tap;
-                        std::memcpy(&tap, taps[t], 4);
+                        int32_t word;
+                        std::memcpy(&word, taps[t], 4);
+                        // (The bytes by a shift per lane: GCC widens a byte vector byte by byte.)
+                        const Ints4 tap = (Ints4{word, word, word, word} >> Ints4{0, 8, 16, 24}) & 0xFF;
                         sum += __builtin_convertvector(tap, Floats4) / 255.0f;
                     }
                     Doubles4 scaled = __builtin_convertvector(sum * scale, Doubles4) * 255.0;
@@ -217,6 +221,8 @@ void box_filter_bytes(const layout::Layout& lay, unsigned texel_bytes, const Sur
 }  // namespace
 
 void Texture::generate_mips() {
+    // (Every refusal comes before the first write: Device::generate_mip_sub_levels() works in
+    // place.)
     const FormatInfo* info = format_info(format_);
     if (info == nullptr || info->kind == FormatKind::Compressed) bad("mip generation needs an uncompressed format");
     const layout::Layout lay = layout::layout_of(format_);

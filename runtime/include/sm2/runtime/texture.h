@@ -49,7 +49,8 @@ public:
 
     // Fills levels 1.. from level 0 with a 2x2 (volumes: 2x2x2) box filter, per face, averaging
     // the decoded values in float and encoding them with the format's rounding. A dimension of
-    // size 1 repeats its texel. Throws std::invalid_argument for DXTn (no encoder).
+    // size 1 repeats its texel. Throws std::invalid_argument for DXTn (no encoder), before it
+    // writes anything.
     void generate_mips();
 
     // A DXTn texture's texels decoded to A8R8G8B8, level for level and face for face (the
