@@ -114,7 +114,6 @@ void bind_derived_constants(const UniformPrelude& prelude, Transcendentals trans
     if (prelude.snapshots.empty()) return;
     // (A batch is 19 KB: not on the stack of whatever thread binds.)
     const auto batch = std::make_unique<Batch>();
-    batch->lane_count = 1;
     uint32_t done = 0;
     for (const UniformSnapshot& snapshot : prelude.snapshots) {
         // (The prelude reads the application's registers only, which the appends leave.)

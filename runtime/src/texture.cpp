@@ -2,8 +2,8 @@
 #include "sm2/runtime/texture.h"
 
 #include <array>
-#include <cstring>
 #include <atomic>
+#include <cstring>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -158,17 +158,12 @@ uint32_t tap_index(uint32_t i, uint32_t size) { return i < size ? i : size - 1; 
 // generate_mips()'s box filter for a level of texels whose every stored channel is an 8-bit
 // UNORM in its own byte (layout::bytewise_unorm8: A8R8G8B8, X8R8G8B8, A8B8G8R8, A8, ...), byte
 // by byte with Surface::read()'s and Surface::write()'s values instead of a Float4 a tap: each
-// tap's byte as read() decodes it (v / 255 in float, from a table), the taps summed in the
+// tap's byte as read() decodes it (v / 255 in float), the taps summed in the
 // generic loop's order and scaled in float, the sum stored as the encoder rounds it (round(255 v)
 // in double, halves up); a byte no channel stores is 0, as the encoder leaves it.
 // (Cloned for AVX2: SSE2 alone has no byte-to-int widening, which it spelled byte by byte.)
 __attribute__((target_clones("arch=x86-64-v3", "default")))
 void box_filter_bytes(const layout::Layout& lay, unsigned texel_bytes, const Surface& src, Surface& dst) {
-    static const std::array<float, 256> decoded = [] {
-        std::array<float, 256> table{};
-        for (unsigned v = 0; v < 256; ++v) table[v] = static_cast<float>(v) / 255.0f;
-        return table;
-    }();
     std::array<bool, 4> stored{};
     for (const layout::Channel& c : lay.rgba)
         if (c.type == layout::Type::Unorm) stored[c.shift / 8] = true;
@@ -191,8 +186,8 @@ void box_filter_bytes(const layout::Layout& lay, unsigned texel_bytes, const Sur
                                             size_t{tap_index(2 * x + dx, src.width())} * texel_bytes;
                 std::byte* const texel = out + z * dst.slice_pitch() + y * dst.row_pitch() + size_t{x} * texel_bytes;
                 if (texel_bytes == 4) {
-                    // The four bytes at once, the same operations (v / 255 as the table's
-                    // entries are made; a conversion of x + 0.5 >= 0 truncates as floor does).
+                    // The four bytes at once, the same operations (a conversion of x + 0.5 >= 0
+                    // truncates as floor does).
                     Floats4 sum{0.0f, 0.0f, 0.0f, 0.0f};
                     for (unsigned t = 0; t < count; ++t) {
                         int32_t word;
@@ -210,7 +205,7 @@ void box_filter_bytes(const layout::Layout& lay, unsigned texel_bytes, const Sur
                 }
                 for (unsigned b = 0; b < texel_bytes; ++b) {
                     float sum = 0.0f;
-                    for (unsigned t = 0; t < count; ++t) sum += decoded[static_cast<uint8_t>(taps[t][b])];
+                    for (unsigned t = 0; t < count; ++t) sum += static_cast<float>(static_cast<uint8_t>(taps[t][b])) / 255.0f;
                     const double scaled = static_cast<double>(sum * scale) * 255.0;
                     const double clamped = scaled > 255.0 ? 255.0 : scaled;  // (never below 0, never NaN)
                     texel[b] = stored[b] ? static_cast<std::byte>(layout::round_to_uint(clamped)) : std::byte{0};
@@ -235,7 +230,6 @@ void Texture::generate_mips() {
                 box_filter_bytes(lay, info->bytes, src, dst);
                 continue;
             }
-            const auto src_index = tap_index;
             for (uint32_t z = 0; z < dst.depth(); ++z)
                 for (uint32_t y = 0; y < dst.height(); ++y)
                     for (uint32_t x = 0; x < dst.width(); ++x) {
@@ -244,9 +238,9 @@ void Texture::generate_mips() {
                         for (uint32_t dz = 0; dz < zn; ++dz)
                             for (uint32_t dy = 0; dy < 2; ++dy)
                                 for (uint32_t dx = 0; dx < 2; ++dx) {
-                                    const Float4 t = src.read(src_index(2 * x + dx, src.width()),
-                                                              src_index(2 * y + dy, src.height()),
-                                                              src_index(2 * z + dz, src.depth()));
+                                    const Float4 t = src.read(tap_index(2 * x + dx, src.width()),
+                                                              tap_index(2 * y + dy, src.height()),
+                                                              tap_index(2 * z + dz, src.depth()));
                                     for (unsigned c = 0; c < 4; ++c) sum[c] += t[c];
                                 }
                         const float scale = 1.0f / static_cast<float>(4 * zn);
