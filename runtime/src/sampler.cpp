@@ -101,7 +101,14 @@ TextureAddress resolve_address(TextureAddress a) {
     return v >= 1 && v <= 5 ? a : TextureAddress::Wrap;
 }
 
-float no_nan(float v) { return std::isnan(v) ? 0.0f : v; }
+// The scalar helpers that the block kernels' anisotropic and texldb set-up runs: inlined into
+// every caller, so that inside a kernel they are compiled for its instruction set (VEX). Called
+// out of line from a kernel, their SSE code ran after the kernel's zmm writes without a
+// vzeroupper (GCC left it out before some of the calls) and waited on the registers' dirty
+// upper halves: choose_levels() alone was a quarter of scene 10's run on the Intel machine.
+#define SM2_SCALAR_HELPER [[gnu::always_inline]] inline
+
+SM2_SCALAR_HELPER float no_nan(float v) { return std::isnan(v) ? 0.0f : v; }
 
 struct Level {
     const std::byte* data = nullptr;
@@ -445,7 +452,7 @@ constexpr double kInvLn2 = 1.4426950408889634;
 constexpr std::array<double, 11> kAtanhSeries = {2.0 / 21, 2.0 / 19, 2.0 / 17, 2.0 / 15, 2.0 / 13, 2.0 / 11,
                                                  2.0 / 9,  2.0 / 7,  2.0 / 5,  2.0 / 3,  2.0};
 
-double lod_log2(double x) {
+SM2_SCALAR_HELPER double lod_log2(double x) {
     const bool tiny = x < 0x1p-1022;  // denormal: scaled into the normal range first
     const double scaled = tiny ? x * 0x1p52 : x;
     const auto bits = std::bit_cast<uint64_t>(scaled);
@@ -462,7 +469,7 @@ double lod_log2(double x) {
     return x == INFINITY ? INFINITY : r;
 }
 
-float log2_lod(double rho, bool fixed) {
+SM2_SCALAR_HELPER float log2_lod(double rho, bool fixed) {
     // log2 in double, one rounding to float; 8 fractional bits in fixed mode.
     double l = rho > 0 ? lod_log2(rho) : -static_cast<double>(kLambdaLimit);
     if (!(l > -kLambdaLimit)) l = -kLambdaLimit;  // also catches NaN
@@ -472,20 +479,20 @@ float log2_lod(double rho, bool fixed) {
 }
 
 // Scales normalized derivatives to level-0 texels.
-std::array<float, 3> to_texels(const Context& c, const std::array<float, 3>& d) {
+SM2_SCALAR_HELPER std::array<float, 3> to_texels(const Context& c, const std::array<float, 3>& d) {
     const Texture& t = *c.texture;
     return {d[0] * static_cast<float>(t.width()), d[1] * static_cast<float>(t.height()),
             c.volume ? d[2] * static_cast<float>(t.depth()) : 0.0f};
 }
 
-double length(const std::array<float, 3>& d) {
+SM2_SCALAR_HELPER double length(const std::array<float, 3>& d) {
     const double x = d[0], y = d[1], z = d[2];
     const double len = std::sqrt(x * x + y * y + z * z);
     return std::isnan(len) ? 0.0 : len;  // NaN derivatives count as 0; inf stays inf
 }
 
 // LOD for texel-space derivative vectors; `bias` = texldb's bias (MIPMAPLODBIAS is added here).
-Lod compute_lod(const Context& c, double lx, double ly, float bias) {
+SM2_SCALAR_HELPER Lod compute_lod(const Context& c, double lx, double ly, float bias) {
     Lod lod;
     const double major = std::max(lx, ly), minor = std::min(lx, ly);
     lod.major_axis = ly > lx ? 1 : 0;
@@ -510,7 +517,7 @@ struct Dir {
 };
 
 // Face coordinates of §14.4 with `face` forced (the quad's face for derivatives); sc/|ma|.
-Dir project_to_face(float x, float y, float z, int face) {
+SM2_SCALAR_HELPER Dir project_to_face(float x, float y, float z, int face) {
     float sc = 0, tc = 0, ma = 0;
     switch (face) {
     case 0: sc = -z; tc = -y; ma = x; break;
@@ -531,7 +538,7 @@ Dir project_to_face(float x, float y, float z, int face) {
 
 // Direction -> face and (u, v). NaN components count as 0; a direction with an infinite
 // component keeps only its infinite components (as +-1); the zero vector gives +Z's centre.
-Dir cube_direction(float x, float y, float z) {
+SM2_SCALAR_HELPER Dir cube_direction(float x, float y, float z) {
     x = no_nan(x);
     y = no_nan(y);
     z = no_nan(z);
@@ -560,7 +567,7 @@ struct LevelChoice {
     float frac = 0;
 };
 
-LevelChoice choose_levels(const Context& c, const Lod& lod) {
+SM2_SCALAR_HELPER LevelChoice choose_levels(const Context& c, const Lod& lod) {
     if (lod.magnify) return {c.mag, c.first, c.first, 0.0f};
     LevelChoice choice{c.anisotropic ? Filter::Linear : c.min, c.first, c.first, 0.0f};
     if (c.mip != Mip::None) {
@@ -586,7 +593,7 @@ Float4 blend_levels(const Float4& a, const Float4& b, float frac) {
 
 // Probe `probe` of an anisotropic lookup of `probes` probes centred on p along `axis`
 // (lookup()'s spacing): p itself for a single probe.
-std::array<float, 3> probe_position(const std::array<float, 3>& p, const std::array<float, 3>& axis, unsigned probe,
+SM2_SCALAR_HELPER std::array<float, 3> probe_position(const std::array<float, 3>& p, const std::array<float, 3>& axis, unsigned probe,
                                     unsigned probes) {
     if (probes <= 1) return p;
     const float n = static_cast<float>(probes);
@@ -655,9 +662,9 @@ Float4 lookup_any(const Context& c, float u, float v, float w, int face, const L
 
 // The LOD changes nothing when both filters agree and there are no mips to choose (anisotropy
 // chooses its probe count from it).
-bool lod_matters(const Context& c) { return c.mip != Mip::None || c.mag != c.min || c.anisotropic; }
+SM2_SCALAR_HELPER bool lod_matters(const Context& c) { return c.mip != Mip::None || c.mag != c.min || c.anisotropic; }
 
-std::array<float, 3> diff(const std::array<float, 3>& a, const std::array<float, 3>& b) {
+SM2_SCALAR_HELPER std::array<float, 3> diff(const std::array<float, 3>& a, const std::array<float, 3>& b) {
     return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
 }
 
@@ -672,7 +679,7 @@ struct QuadLookups {
     std::array<std::array<float, 3>, 4> axis;
 };
 
-QuadLookups quad_lookups(const Context& c, const emu::TextureRequest& request, unsigned q) {
+SM2_SCALAR_HELPER QuadLookups quad_lookups(const Context& c, const emu::TextureRequest& request, unsigned q) {
     const auto& in = *request.coordinates;
     QuadLookups s;
     std::array<float, 4> bias{};
@@ -720,6 +727,26 @@ QuadLookups quad_lookups(const Context& c, const emu::TextureRequest& request, u
     return s;
 }
 
+// An anisotropic batch's per-lane set-up for the block path (block_sample_anisotropic()): each
+// quad's lookups and each lane's levels, and the most probes a lane takes.
+struct AnisotropicSetup {
+    std::array<QuadLookups, emu::kBatchQuads> quad;
+    std::array<LevelChoice, emu::kBatchLanes> choice;
+    unsigned most = 1;
+};
+
+SM2_SCALAR_HELPER void anisotropic_setup(const Context& c, const emu::TextureRequest& request, unsigned quads,
+                                         AnisotropicSetup& s) {
+    s.most = 1;
+    for (unsigned q = 0; q < quads; ++q) {
+        s.quad[q] = quad_lookups(c, request, q);
+        for (unsigned i = 0; i < 4; ++i) {
+            s.choice[4 * q + i] = choose_levels(c, s.quad[q].lod[i]);
+            s.most = std::max(s.most, s.quad[q].lod[i].probes);
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // 16 lanes at once: 2D, volume and cube lookups on textures whose texels are 1, 2, 4 or 8 bytes
 // of UNORM, SNORM, 16- or 32-bit float fields (block_format()), POINT or LINEAR filtering, anisotropic
@@ -739,6 +766,23 @@ struct BlockLanes {
 };
 
 using BlockLevels = TextureSampler::BlockLevels;
+
+// texldb lanes with a nonzero bias choose their own levels (block_sample()): from their quad's
+// lengths (lengths[q] along x, lengths[4 + q] along y).
+SM2_SCALAR_HELPER void choose_biased_levels(const Context& c, const emu::TextureRequest& request, unsigned quads,
+                                            const std::array<double, 8>& lengths, BlockLanes& lanes) {
+    const auto& in = *request.coordinates;
+    for (unsigned l = 0; l < 4 * quads; ++l) {
+        const float bias = in[3][l];
+        if (bias == 0.0f) continue;
+        const unsigned q = l / 4;
+        const LevelChoice choice = choose_levels(c, compute_lod(c, lengths[q], lengths[4 + q], bias));
+        lanes.l0[l] = choice.l0;
+        lanes.l1[l] = choice.l1;
+        lanes.frac[l] = choice.frac;
+        lanes.linear[l] = choice.filter == Filter::Linear ? 1 : 0;
+    }
+}
 
 // The formats of 1-, 2-, 4- and 8-byte texels whose channels are all of those kinds, each
 // within one 32-bit word (A8R8G8B8, X8R8G8B8, A8B8G8R8, X8B8G8R8, A2B10G10R10, A2R10G10B10,
