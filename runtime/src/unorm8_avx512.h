@@ -9,7 +9,11 @@
 #include <immintrin.h>
 
 // Functions marked SM2_AVX512 run only where cpu_has_avx512() holds, SM2_AVX2 ones where
-// cpu_has_avx2() does.
+// cpu_has_avx2() does. Such a function calls no baseline (SSE) function in its loops: GCC does
+// not always put a vzeroupper before the call, and the callee's SSE code then waits on the
+// dirty upper halves (a quarter of scene 10's run on an Intel core). The scalar helpers it
+// needs are inlined into it (sampler.cpp's SM2_SCALAR_HELPER); bench/sse_transitions.sh lists
+// the calls of a build.
 #define SM2_AVX512 __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw")))
 #define SM2_AVX2 __attribute__((target("avx2,fma")))
 
