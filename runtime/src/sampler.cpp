@@ -593,8 +593,8 @@ Float4 blend_levels(const Float4& a, const Float4& b, float frac) {
 
 // Probe `probe` of an anisotropic lookup of `probes` probes centred on p along `axis`
 // (lookup()'s spacing): p itself for a single probe.
-SM2_SCALAR_HELPER std::array<float, 3> probe_position(const std::array<float, 3>& p, const std::array<float, 3>& axis, unsigned probe,
-                                    unsigned probes) {
+SM2_SCALAR_HELPER std::array<float, 3> probe_position(const std::array<float, 3>& p, const std::array<float, 3>& axis,
+                                                      unsigned probe, unsigned probes) {
     if (probes <= 1) return p;
     const float n = static_cast<float>(probes);
     const float t = (static_cast<float>(probe) + 0.5f) / n - 0.5f;
@@ -727,26 +727,6 @@ SM2_SCALAR_HELPER QuadLookups quad_lookups(const Context& c, const emu::TextureR
     return s;
 }
 
-// An anisotropic batch's per-lane set-up for the block path (block_sample_anisotropic()): each
-// quad's lookups and each lane's levels, and the most probes a lane takes.
-struct AnisotropicSetup {
-    std::array<QuadLookups, emu::kBatchQuads> quad;
-    std::array<LevelChoice, emu::kBatchLanes> choice;
-    unsigned most = 1;
-};
-
-SM2_SCALAR_HELPER void anisotropic_setup(const Context& c, const emu::TextureRequest& request, unsigned quads,
-                                         AnisotropicSetup& s) {
-    s.most = 1;
-    for (unsigned q = 0; q < quads; ++q) {
-        s.quad[q] = quad_lookups(c, request, q);
-        for (unsigned i = 0; i < 4; ++i) {
-            s.choice[4 * q + i] = choose_levels(c, s.quad[q].lod[i]);
-            s.most = std::max(s.most, s.quad[q].lod[i].probes);
-        }
-    }
-}
-
 // ---------------------------------------------------------------------------------------------
 // 16 lanes at once: 2D, volume and cube lookups on textures whose texels are 1, 2, 4 or 8 bytes
 // of UNORM, SNORM, 16- or 32-bit float fields (block_format()), POINT or LINEAR filtering, anisotropic
@@ -766,23 +746,6 @@ struct BlockLanes {
 };
 
 using BlockLevels = TextureSampler::BlockLevels;
-
-// texldb lanes with a nonzero bias choose their own levels (block_sample()): from their quad's
-// lengths (lengths[q] along x, lengths[4 + q] along y).
-SM2_SCALAR_HELPER void choose_biased_levels(const Context& c, const emu::TextureRequest& request, unsigned quads,
-                                            const std::array<double, 8>& lengths, BlockLanes& lanes) {
-    const auto& in = *request.coordinates;
-    for (unsigned l = 0; l < 4 * quads; ++l) {
-        const float bias = in[3][l];
-        if (bias == 0.0f) continue;
-        const unsigned q = l / 4;
-        const LevelChoice choice = choose_levels(c, compute_lod(c, lengths[q], lengths[4 + q], bias));
-        lanes.l0[l] = choice.l0;
-        lanes.l1[l] = choice.l1;
-        lanes.frac[l] = choice.frac;
-        lanes.linear[l] = choice.filter == Filter::Linear ? 1 : 0;
-    }
-}
 
 // The formats of 1-, 2-, 4- and 8-byte texels whose channels are all of those kinds, each
 // within one 32-bit word (A8R8G8B8, X8R8G8B8, A8B8G8R8, X8B8G8R8, A2B10G10R10, A2R10G10B10,
