@@ -207,6 +207,9 @@ struct BlockChannel {
 };
 using BlockFormat = std::array<BlockChannel, 4>;
 
+// block_filter_level()'s WideUnorm flavours (sampler_block.inc's block_tap()); 0 for the others.
+constexpr unsigned kAnyWidth = 1, kSixteenBits = 2;
+
 }  // namespace
 
 // The levels of a texture as tables the block path's lanes index by level number, and the
@@ -233,6 +236,9 @@ struct TextureSampler::BlockLevels {
     // filtering) or one wider than 8 (A2B10G10R10): the filter's instance for them decodes each
     // tap inline, without block_channel()'s call and switch.
     bool wide_unorm = false;
+    // wide_unorm with channel k the 16-bit field at bit 16 k (A16B16G16R16): the filter's
+    // instance for them has the fields' positions and quotient in its code.
+    bool unorm16 = false;
     // Every channel an 8-bit UNORM field of the first word or a constant (A8R8G8B8, X8R8G8B8,
     // A8B8G8R8, L8, A8L8, A8): the filter's instance for them has the fields' masks and
     // maximum in its code.
@@ -815,6 +821,12 @@ bool block_supported(const Context& c, BlockLevels& levels) {
         all_unorm && (std::all_of(format->begin(), format->end(),
                                   [&](const BlockChannel& ch) { return ch.mask > 31u && !(c.fixed && ch.mask <= 0xFFu); }) ||
                       std::any_of(format->begin(), format->end(), [](const BlockChannel& ch) { return ch.mask > 0xFFu; }));
+    levels.unorm16 = true;
+    for (unsigned k = 0; k < 4; ++k) {
+        const BlockChannel& ch = (*format)[k];
+        levels.unorm16 = levels.unorm16 && ch.kind == BlockChannel::Kind::Unorm && ch.mask == 0xFFFFu &&
+                         ch.high == k / 2 && ch.shift == 16 * (k % 2);
+    }
     // Every channel a constant or a UNORM field of the first word whose mask passes `fits`.
     const auto fields_or_constants = [&](auto fits) {
         return std::all_of(format->begin(), format->end(), [&](const BlockChannel& ch) {

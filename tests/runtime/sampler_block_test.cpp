@@ -788,7 +788,7 @@ void expect_every_texel(Format format, uint32_t count, uint32_t width, unsigned 
     auto& bytes = t.surface(0).bytes();
     const size_t pitch = t.surface(0).row_pitch();
     for (uint32_t v = 0; v < count; ++v) {
-        const uint32_t texel = texel_of(v);
+        const uint64_t texel = texel_of(v);
         std::memcpy(bytes.data() + (v / width) * pitch + (v % width) * texel_bytes, &texel, texel_bytes);
     }
     for (const bool avx2 : forced_avx2_choices()) {
@@ -830,7 +830,7 @@ void expect_every_texel(Format format, uint32_t count, uint32_t width, unsigned 
 void expect_every_field_value(Format format, unsigned bits, unsigned shift, unsigned channel) {
     const uint32_t count = 1u << bits;
     const float max = static_cast<float>(count - 1);
-    expect_every_texel(format, count, std::min(count, 4096u), channel, [&](uint32_t v) { return v << shift; },
+    expect_every_texel(format, count, std::min(count, 4096u), channel, [&](uint32_t v) { return uint64_t{v} << shift; },
                        [&](uint32_t v) {
                            volatile float value = static_cast<float>(v);
                            return std::bit_cast<uint32_t>(value / max);
@@ -885,6 +885,8 @@ TEST(SamplerBlockPath, EveryTenAndTwoBitFieldDecodesAsTheDivision) {
 TEST(SamplerBlockPath, EverySixteenBitFieldDecodesAsTheDivision) {
     expect_every_field_value(Format::G16R16, 16, 0, 0);
     expect_every_field_value(Format::G16R16, 16, 16, 1);
+    // A16B16G16R16's instance decodes each field by unorm8::decode16, not the corrected quotient.
+    for (unsigned k = 0; k < 4; ++k) expect_every_field_value(Format::A16B16G16R16, 16, 16 * k, k);
 }
 
 // The exact bilinear sums S of fixed8 filtering (an integer below 2^24 for fields of n <= 8
