@@ -267,6 +267,11 @@ struct TextureSampler::BlockLevels {
     // its decoded values are finite and non-negative (a UNORM field or a constant; sRGB reads
     // of them too), where v * 0 = +0 = 0 * w, the same product in the same place of the sum.
     bool zero_border = false;
+    // Every channel decodes to a finite value other than -0 (UNORM and SNORM fields, constants;
+    // BORDERCOLOR's channels are finite and non-negative): a 2x2 sum whose weights are 1, +0, +0
+    // and +0 is then tap t00 as it is, which block_filter_level() reads alone (a texel-centre
+    // lookup).
+    bool finite_taps = false;
     // block_filter_level()'s instance for these levels in the instance set that `avx512` names
     // (block_filter_for(), sampler_block.inc), chosen once here.
     void (*filter)() = nullptr;
@@ -871,6 +876,9 @@ bool block_supported(const Context& c, BlockLevels& levels) {
             }
         }
     }
+    levels.finite_taps = std::none_of(format->begin(), format->end(), [](const BlockChannel& ch) {
+        return ch.kind == BlockChannel::Kind::Half || ch.kind == BlockChannel::Kind::Float;
+    });
     levels.zero_border = reads_border;
     for (unsigned k = 0; k < 4; ++k) {
         const BlockChannel::Kind kind = (*format)[k].kind;

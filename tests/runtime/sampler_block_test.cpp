@@ -249,6 +249,59 @@ TEST(SamplerBlockPath, SameBitsAsThePerLanePath) {
     }
 }
 
+// LINEAR lookups at texel centres, whose fixed8 weights are all 0 (a screen-space pass over a
+// texture of the target's size, a blur's centre tap): where every decoded value is finite and
+// none is -0 (UNORM and SNORM fields) the block path reads tap t00 alone, which must be the
+// per-lane path's 2x2 sum; float and half formats, whose taps beside t00 may be infinities or
+// NaNs (times 0: NaN) and whose t00 may be -0 (plus +0: +0), must still sum all four. A third of
+// the requests have every lane centred, a third only u centred, a third only v; BORDER lanes
+// from the centres just outside the level.
+TEST(SamplerBlockPath, TexelCentreLookupsMatchThePerLanePath) {
+    std::mt19937 rng(20261203);
+    const Format formats[] = {Format::A16B16G16R16, Format::A8R8G8B8, Format::R5G6B5,  Format::L8,
+                              Format::A4R4G4B4,     Format::V8U8,     Format::V16U16,  Format::Q16W16V16U16,
+                              Format::A2B10G10R10,  Format::R32F,     Format::G32R32F, Format::A16B16G16R16F,
+                              Format::R16F,         Format::G16R16F};
+    unsigned block_requests = 0, total = 0;
+    for (unsigned round = 0; round < 120; ++round) {
+        const Format format = formats[round % std::size(formats)];
+        const uint32_t w = 1u << (1 + rng() % 5), h = 1u << (rng() % 5);
+        const Texture texture = random_texture(rng, format, w, h, 1);
+        TextureSampler block, lanes;
+        bind_block_and_lanes(block, lanes, texture);
+        block.set_block_avx2(round % 3 == 2);
+        SamplerState state = random_state(rng);
+        state.mag_filter = state.min_filter = TextureFilter::Linear;
+        state.mip_filter = TextureFilter::None;
+        const FilterPrecision precision = rng() % 4 == 0 ? FilterPrecision::Exact : FilterPrecision::Fixed8;
+        for (TextureSampler* s : {&block, &lanes}) {
+            s->set_state(0, state);
+            s->set_precision(precision);
+        }
+        for (unsigned k = 0; k < 30; ++k) {
+            std::array<emu::FloatLanes, 4> coords{};
+            const unsigned centred = k % 3;  // 0: u and v, 1: u only, 2: v only
+            const int x0 = static_cast<int>(rng() % (w + 4)) - 2, y0 = static_cast<int>(rng() % (h + 4)) - 2;
+            for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+                // The batch's 2x2 quads side by side, a texel a pixel (derivatives of one texel).
+                const int x = x0 + static_cast<int>(2 * (l / 4) + (l & 1u)), y = y0 + static_cast<int>(l >> 1 & 1u);
+                const float off = 0.25f + 0.5f * static_cast<float>(rng() % 2);
+                coords[0][l] = (static_cast<float>(x) + (centred == 2 ? off : 0.5f)) / static_cast<float>(w);
+                coords[1][l] = (static_cast<float>(y) + (centred == 1 ? off : 0.5f)) / static_cast<float>(h);
+            }
+            emu::TextureRequest r;
+            r.coordinates = &coords;
+            ++total;
+            block_requests += block.block_path_applies(0) ? 1 : 0;
+            ASSERT_TRUE(same_texels(block, lanes, r, true))
+                << format_info(format)->name << " " << w << "x" << h << ", request " << k << " (round " << round << ")";
+        }
+    }
+    if (cpu_runs_block_path()) {
+        EXPECT_GT(block_requests, total / 2);
+    }
+}
+
 // DXTn textures: the block path reads their texels decoded to A8R8G8B8 (Texture::decoded_dxt())
 // and must give the per-lane path's bits, which decodes each tap from its block and sums the taps
 // in float: 2D, cube and volume textures of random blocks (every bit pattern is a valid block:
