@@ -167,6 +167,9 @@ template <typename T>
 // AVX-512 path only).
 struct Unorm8Texel {
     bool valid = false, wide = false;
+    // Every bit of the texel lies in a field (no X bits, which a write clears): writing back the
+    // values read gives the same bytes.
+    bool full = false;
     unsigned words = 1;              // 32-bit words per texel: 1 or 2
     std::array<int8_t, 4> shift{};   // lowest bit of the channel's field in the texel; -1: not stored
     std::array<uint32_t, 4> mask{};  // 2^n - 1 of the channel's field
@@ -195,6 +198,7 @@ Unorm8Texel unorm8_layout(const FormatInfo& info) {
     }
     t.wide = true;
     t.words = info.bytes / 4;
+    t.full = used == (info.bytes == 8 ? ~uint64_t{0} : 0xFFFFFFFFull);
     t.valid = bytes && t.words == 1;
     return t;
 }

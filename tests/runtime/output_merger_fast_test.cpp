@@ -455,6 +455,47 @@ TEST(OutputMergerFast, SourceOverMatchesThePerPixelPathAtRoundingBoundaries) {
     }
 }
 
+// Source over ("SRCALPHA, INVSRCALPHA") with a source alpha that saturates to +0 on every lane
+// (0, -0, negatives, -inf, NaN) writes s * 0 + d * 1 = d: the bytes of a UNORM target whose
+// every bit is a field's stay as they were, whatever the colour (NaN and infinities saturate
+// first) and the write mask, and the fast paths (which read and write nothing then) agree with
+// the per-pixel path; X8R8G8B8's writes clear its X byte (the fast path must still write).
+// Batches with one lane of alpha 0.3 must blend that lane as before.
+TEST(OutputMergerFast, TransparentSourceOverLeavesEveryTexel) {
+    static const float kTransparent[] = {0.0f, -0.0f, -0.5f, -std::numeric_limits<float>::infinity(),
+                                         std::numeric_limits<float>::quiet_NaN(), -1e-40f};
+    const Format formats[] = {Format::A8R8G8B8, Format::X8R8G8B8, Format::A8B8G8R8, Format::A2R10G10B10,
+                              Format::A16B16G16R16, Format::R5G6B5, Format::A8R8G8B8, Format::A8R8G8B8};
+    Random r(20261203);
+    unsigned changed = 0;
+    for (int round = 0; round < 3000; ++round) {
+        RenderState rs;
+        rs.alpha_blend_enable = true;
+        rs.src_blend = Blend::SrcAlpha;
+        rs.dest_blend = Blend::InvSrcAlpha;
+        rs.color_write_enable[0] = r.chance(0.5) ? 0xF : r.below(16);
+        const Format format = formats[r.below(std::size(formats))];
+        Case c = random_case(r, {format});
+        c.state = output_merger_state(rs);
+        c.input.color_outputs = 1;
+        for (unsigned t = 1; t < kMaxRenderTargets; ++t) c.color[t].reset();
+        const bool one_opaque_lane = round % 4 == 3;
+        for (unsigned i = 0; i < kLanes; ++i) {
+            const float alpha = one_opaque_lane && i == round % kLanes ? 0.3f : kTransparent[r.below(std::size(kTransparent))];
+            c.batch.set(c.batch.render_target(0), i, r.colour(), r.colour(), r.colour(), alpha);
+        }
+        ASSERT_TRUE(same_both_ways(c)) << "round " << round;
+        Case after;
+        c.run(false, after);
+        const bool same = after.color[0]->bytes() == c.color[0]->bytes();
+        if (!one_opaque_lane && format != Format::X8R8G8B8) {
+            ASSERT_TRUE(same) << "round " << round << ": a transparent batch changed the target";
+        }
+        changed += same ? 0 : 1;
+    }
+    EXPECT_GT(changed, 100u);  // the lanes of alpha 0.3 blended
+}
+
 // One lane at (1, 1) of a 4x4 target whose texel there holds `stored`; returns the texel after.
 uint32_t merge_one(Format f, uint32_t stored, const RenderState& rs, const Vec4& colour, bool generic) {
     Surface target(f, 4, 4);
