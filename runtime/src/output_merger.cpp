@@ -13,6 +13,39 @@
 #include "unorm8_avx512.h"
 
 namespace sm2::runtime {
+
+// The 8-bit fast path: render targets whose stored channels are each an 8-bit UNORM in its own
+// byte of a 4-byte texel (A8R8G8B8, X8R8G8B8, A8B8G8R8, X8B8G8R8), read and written in place.
+// Channels the format lacks read as their layout says (X8: alpha 1) and store nothing (the
+// byte stays 0, as layout::encode leaves it).
+// valid: every stored channel an 8-bit UNORM in its own byte (the compiler-vectorized path and
+// the AVX-512 one); wide: every stored channel a UNORM field of up to 16 bits within one 32-bit
+// word, none shared (A2B10G10R10, A2R10G10B10, G16R16 and the 8-byte A16B16G16R16 too; the
+// AVX-512 path only).
+struct Unorm8Texel {
+    bool valid = false, wide = false;
+    // Every bit of the texel lies in a field (no X bits, which a write clears): writing back the
+    // values read gives the same bytes.
+    bool full = false;
+    unsigned words = 1;              // 32-bit words per texel: 1 or 2
+    std::array<int8_t, 4> shift{};   // lowest bit of the channel's field in the texel; -1: not stored
+    std::array<uint32_t, 4> mask{};  // 2^n - 1 of the channel's field
+    Vec4 missing{};                  // value read for a channel that is not stored
+};
+
+// Float targets: every stored channel a 32-bit float in its own 4 bytes (R32F, G32R32F,
+// A32B32G32R32F), which layout::decode and encode copy bit for bit, or a half in its own 2
+// bytes (R16F, G16R16F, A16B16G16R16F: `half`, half.h's conversions), and no other bytes.
+// Without blending a merge of 32-bit floats then copies each written channel's shader value
+// into place; a masked channel would store the bits it read, so it is left as it is.
+struct FloatTexel {
+    bool valid = false;
+    bool half = false;
+    unsigned bytes = 0;
+    std::array<int8_t, 4> offset{};  // the channel's byte in the texel; -1: not stored
+    Vec4 missing{};                  // value read for a channel that is not stored
+};
+
 namespace {
 
 constexpr unsigned kLanes = emu::kBatchLanes;
@@ -157,24 +190,6 @@ template <typename T>
     return r;
 }
 
-// The 8-bit fast path: render targets whose stored channels are each an 8-bit UNORM in its own
-// byte of a 4-byte texel (A8R8G8B8, X8R8G8B8, A8B8G8R8, X8B8G8R8), read and written in place.
-// Channels the format lacks read as their layout says (X8: alpha 1) and store nothing (the
-// byte stays 0, as layout::encode leaves it).
-// valid: every stored channel an 8-bit UNORM in its own byte (the compiler-vectorized path and
-// the AVX-512 one); wide: every stored channel a UNORM field of up to 16 bits within one 32-bit
-// word, none shared (A2B10G10R10, A2R10G10B10, G16R16 and the 8-byte A16B16G16R16 too; the
-// AVX-512 path only).
-struct Unorm8Texel {
-    bool valid = false, wide = false;
-    // Every bit of the texel lies in a field (no X bits, which a write clears): writing back the
-    // values read gives the same bytes.
-    bool full = false;
-    unsigned words = 1;              // 32-bit words per texel: 1 or 2
-    std::array<int8_t, 4> shift{};   // lowest bit of the channel's field in the texel; -1: not stored
-    std::array<uint32_t, 4> mask{};  // 2^n - 1 of the channel's field
-    Vec4 missing{};                  // value read for a channel that is not stored
-};
 Unorm8Texel unorm8_layout(const FormatInfo& info) {
     Unorm8Texel t;
     const layout::Layout lay = layout::layout_of(info.format);
@@ -213,18 +228,6 @@ const Unorm8Texel& unorm8_texel(const FormatInfo& info) {
     return table[static_cast<size_t>(&info - format_table().data())];
 }
 
-// Float targets: every stored channel a 32-bit float in its own 4 bytes (R32F, G32R32F,
-// A32B32G32R32F), which layout::decode and encode copy bit for bit, or a half in its own 2
-// bytes (R16F, G16R16F, A16B16G16R16F: `half`, half.h's conversions), and no other bytes.
-// Without blending a merge of 32-bit floats then copies each written channel's shader value
-// into place; a masked channel would store the bits it read, so it is left as it is.
-struct FloatTexel {
-    bool valid = false;
-    bool half = false;
-    unsigned bytes = 0;
-    std::array<int8_t, 4> offset{};  // the channel's byte in the texel; -1: not stored
-    Vec4 missing{};                  // value read for a channel that is not stored
-};
 FloatTexel float_layout(const FormatInfo& info) {
     FloatTexel t;
     const layout::Layout lay = layout::layout_of(info.format);
@@ -609,20 +612,22 @@ MergePlan merge_plan(const OutputMergerState& s, const RenderTargets& targets, c
         target.srgb = t == 0 && s.srgb_write && info->srgb;
         target.path = TargetPath::PerPixel;
         if (in.generic_path) continue;
+        target.unorm8 = &unorm8_texel(*info);
+        target.floats = &float_texel(*info);
         if (target.srgb) {
             // sRGB writes of 8-bit fields: merge_unorm8()'s sRGB conversions.
-            if (unorm8_texel(*info).valid) target.path = TargetPath::Unorm8Lanes;
+            if (target.unorm8->valid) target.path = TargetPath::Unorm8Lanes;
             continue;
         }
         // (32-bit offsets in the 16-lane kernels.)
         const bool block = plan.block && surface->bytes().size() <= size_t{INT32_MAX};
-        const Unorm8Texel& unorm = unorm8_texel(*info);
+        const Unorm8Texel& unorm = *target.unorm8;
         if (unorm.wide && block) {
             target.path = unorm.words == 2 ? TargetPath::Unorm8Block8 : TargetPath::Unorm8Block;
             target.bytes = unorm.valid;
         } else if (unorm.valid) {
             target.path = TargetPath::Unorm8Lanes;
-        } else if (const FloatTexel& floats = float_texel(*info); floats.valid) {
+        } else if (const FloatTexel& floats = *target.floats; floats.valid) {
             target.path = s.blend.enable || floats.half ? TargetPath::FloatMerge
                           : block                       ? TargetPath::FloatBlock
                                                         : TargetPath::FloatLanes;
@@ -718,7 +723,7 @@ emu::LaneMask merge(const OutputMergerState& s, const RenderTargets& targets, co
         switch (path) {
         case TargetPath::Unorm8Block:
         case TargetPath::Unorm8Block8: {
-            const Unorm8Texel& fmt = unorm8_texel(*target.info);
+            const Unorm8Texel& fmt = *target.unorm8;
             // Side by side in one quad row (see kRowLane), all 16 pixels inside the surface?
             bool run = lanes.quad_count == 4 && lanes.x[0] >= 0 && lanes.y[0] >= 0 &&
                        static_cast<uint32_t>(lanes.x[0]) + 8 <= width && static_cast<uint32_t>(lanes.y[0]) + 2 <= height;
@@ -738,19 +743,19 @@ emu::LaneMask merge(const OutputMergerState& s, const RenderTargets& targets, co
             continue;
         }
         case TargetPath::Unorm8Lanes:
-            merge_unorm8(s.blend, unorm8_texel(*target.info), *surface, mask, src, texel_offsets(lanes, *surface, 4), write, srgb);
+            merge_unorm8(s.blend, *target.unorm8, *surface, mask, src, texel_offsets(lanes, *surface, 4), write, srgb);
             continue;
         case TargetPath::FloatMerge: {
-            const FloatTexel& fmt = float_texel(*target.info);
+            const FloatTexel& fmt = *target.floats;
             merge_float(s.blend, fmt, *surface, mask, src, texel_offsets(lanes, *surface, fmt.bytes), write);
             continue;
         }
         case TargetPath::FloatBlock:
-            if (avx512_block) avx512::copy_float_block(float_texel(*target.info), *surface, mask, src, lanes, write);
-            else avx2::copy_float_block(float_texel(*target.info), *surface, mask, src, lanes, write);
+            if (avx512_block) avx512::copy_float_block(*target.floats, *surface, mask, src, lanes, write);
+            else avx2::copy_float_block(*target.floats, *surface, mask, src, lanes, write);
             continue;
         case TargetPath::FloatLanes: {
-            const FloatTexel& fmt = float_texel(*target.info);
+            const FloatTexel& fmt = *target.floats;
             std::byte* const bytes = surface->bytes().data();
             for (unsigned l = 0; l < kLanes; ++l) {
                 if (!(write >> l & 1u)) continue;  // lane order: a repeated pixel keeps the later lane
