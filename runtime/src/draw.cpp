@@ -189,6 +189,9 @@ struct PixelPipeline {
     MergeInput merge_template{};
     MergePlan merge_plan{};  // merge_plan(merger, targets, merge_template)
     bool early_depth_stencil = false;
+    // Whether anything reads the interpolated depth: the depth and stencil tests, fog, pixel
+    // history (sm2 pixel, sm2 debug). Without, interpolation leaves it out.
+    bool interpolated_depth = true;
     bool reference_paths = false;  // DeviceOptions::reference_paths: the portable interpolation
     const TextureSampler* sampler = nullptr;
 };
@@ -227,7 +230,7 @@ static_assert(lanes_in(0) == 0 && lanes_in(0xFFFF) == 16 && lanes_in(0x8001) == 
 template <class Observer>
 void shade_quads(const PixelPipeline& pipe, const PrimitiveSetup& prim, std::span<const Quad> quads,
                  TileWorker& w, Observer& observer) {
-    interpolate(prim, quads, pipe.ps_varyings, w.batch, w.lanes, pipe.reference_paths);
+    interpolate(prim, quads, pipe.ps_varyings, w.batch, w.lanes, pipe.reference_paths, pipe.interpolated_depth);
     emu::LaneMask live = w.lanes.coverage;
     w.pixels_rasterized += lanes_in(live);
     MergeInput input = pipe.merge_template;
@@ -817,6 +820,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     const bool kills = ps_object.texkill;
     pipe.early_depth_stencil = merger.depth_stencil.active() && !pipe.merge_template.shader_depth && !kills &&
                                !merger.alpha_test;
+    pipe.interpolated_depth = merger.depth_stencil.active() || merger.fog_enable || pixel_watch_;
 
     const TileBins bins = bin_by_tile(setups, rt0->width(), rt0->height());
 

@@ -17,7 +17,7 @@ namespace sm2::runtime {
 // attribute for x86-64-v4 alone, an illegal instruction on CPUs without AVX-512. The block
 // kernels above do the vector work.)
 void interpolate(const PrimitiveSetup& p, std::span<const Quad> quads, uint16_t varyings,
-                 emu::Batch& batch, PixelLanes& lanes, bool reference) {
+                 emu::Batch& batch, PixelLanes& lanes, bool reference, bool depth) {
     constexpr unsigned N = emu::kBatchLanes;
     const size_t n = quads.size() < emu::kBatchQuads ? quads.size() : emu::kBatchQuads;
     lanes.quad_count = static_cast<unsigned>(n);
@@ -41,11 +41,13 @@ void interpolate(const PrimitiveSetup& p, std::span<const Quad> quads, uint16_t 
     }
     for (unsigned q = 0; q < n; ++q) lanes.coverage |= static_cast<emu::LaneMask>(quads[q].mask & 0xFu) << (4 * q);
     if (!reference && cpu_has_avx512()) {
-        avx512::weights_and_varyings_block(p, used, batch, lanes);
+        if (depth) avx512::weights_and_varyings_block<true>(p, used, batch, lanes);
+        else avx512::weights_and_varyings_block<false>(p, used, batch, lanes);
         return;
     }
     if (!reference && cpu_has_avx2()) {
-        avx2::weights_and_varyings_block(p, used, batch, lanes);
+        if (depth) avx2::weights_and_varyings_block<true>(p, used, batch, lanes);
+        else avx2::weights_and_varyings_block<false>(p, used, batch, lanes);
         return;
     }
     // Barycentric weights, depth and the perspective-correct weights, one loop per quantity over
@@ -56,7 +58,7 @@ void interpolate(const PrimitiveSetup& p, std::span<const Quad> quads, uint16_t 
         const double dx = lanes.x[lane] - p.origin_x, dy = lanes.y[lane] - p.origin_y;
         const double b1 = p.b1.c + p.b1.dx * dx + p.b1.dy * dy;
         const double b2 = p.b2.c + p.b2.dx * dx + p.b2.dy * dy;
-        lanes.depth[lane] = static_cast<float>(p.z0 + b1 * p.dz1 + b2 * p.dz2 + p.depth_offset);
+        if (depth) lanes.depth[lane] = static_cast<float>(p.z0 + b1 * p.dz1 + b2 * p.dz2 + p.depth_offset);
         const double f1 = b1 * p.rhw[1], f2 = b2 * p.rhw[2];
         const double sum = (1.0 - b1 - b2) * p.rhw[0] + f1 + f2;
         c1[lane] = static_cast<float>(perspective ? f1 / sum : b1);

@@ -194,8 +194,19 @@ TEST(Interpolation, VectorCodeGivesThePortableLoopsBits) {
             PixelLanes fast_lanes, portable_lanes;
             interpolate(p, std::span(quads).subspan(first, n), kAllVaryings, fast, fast_lanes, false);
             interpolate(p, std::span(quads).subspan(first, n), kAllVaryings, portable, portable_lanes, true);
+            // A draw that reads no depth (depth = false): the depth left as it was, everything
+            // else the same bits.
+            emu::Batch depthless;
+            PixelLanes depthless_lanes;
+            depthless_lanes.depth.fill(std::bit_cast<float>(0x7FC0DEADu));
+            interpolate(p, std::span(quads).subspan(first, n), kAllVaryings, depthless, depthless_lanes, round % 2 == 0, false);
             for (unsigned lane = 0; lane < 4 * n; ++lane) {
                 ASSERT_EQ(std::bit_cast<uint32_t>(fast_lanes.depth[lane]), std::bit_cast<uint32_t>(portable_lanes.depth[lane]));
+                ASSERT_EQ(std::bit_cast<uint32_t>(depthless_lanes.depth[lane]), 0x7FC0DEADu);
+                ASSERT_EQ(std::bit_cast<uint32_t>(depthless_lanes.fog[lane]), std::bit_cast<uint32_t>(fast_lanes.fog[lane]));
+                for (unsigned t = 0; t < 8; ++t)
+                    for (unsigned c = 0; c < 4; ++c)
+                        ASSERT_EQ(std::bit_cast<uint32_t>(depthless.texcoord(t)[c][lane]), std::bit_cast<uint32_t>(fast.texcoord(t)[c][lane]));
                 ASSERT_EQ(std::bit_cast<uint32_t>(fast_lanes.fog[lane]), std::bit_cast<uint32_t>(portable_lanes.fog[lane]));
                 for (unsigned r = 0; r < 2; ++r)
                     for (unsigned c = 0; c < 4; ++c)

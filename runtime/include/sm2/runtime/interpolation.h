@@ -36,7 +36,9 @@ struct PixelLanes {
 // mask selects (other registers are left as they are); sets batch.lane_count = 4n.
 // reference: the portable loops even where AVX-512 code would run (the same bits; tests and
 // DeviceOptions::reference_paths compare the two).
+// depth: whether lanes.depth is read (a depth or stencil test, fog, pixel history); without, it
+// is left as it was (a draw leaves out what it does not need).
 void interpolate(const PrimitiveSetup& prim, std::span<const Quad> quads, uint16_t varyings,
-                 emu::Batch& batch, PixelLanes& lanes, bool reference = false);
+                 emu::Batch& batch, PixelLanes& lanes, bool reference = false, bool depth = true);
 
 }  // namespace sm2::runtime
