@@ -91,11 +91,9 @@ using isa::Opcode;
 
 // The texld callback the generated code calls (the kernel sm2_k_tex in kernels.cpp): the same
 // request to the same Sampler as the interpreter makes.
-using SampleFunction = void (*)(void* sampler, unsigned sampler_index, unsigned variant, unsigned lane_count,
-                                uint32_t killed, const float* coordinates, float* texels);
+using SampleFunction = CompiledShader::SampleFunction;
 // The compiled function: (Batch*, constant registers, constant count, Sampler*, callback).
-using Entry = void (*)(void* batch, const float* constants, int64_t constant_count, void* sampler,
-                       SampleFunction sample);
+using Entry = CompiledShader::Entry;
 
 void sample_callback(void* sampler, unsigned sampler_index, unsigned variant, unsigned lane_count, uint32_t killed,
                      const float* coordinates, float* texels) {
@@ -866,16 +864,6 @@ struct CompiledShader::Code {
     }
 };
 
-void CompiledShader::run(const ConstantFile& constants, Batch& batch, Sampler* sampler) const {
-    if (constants.registers.size() < constant_count_)
-        throw std::invalid_argument("the constant file has " + std::to_string(constants.registers.size()) +
-                                    " registers, the executable reads up to " + std::to_string(constant_count_) +
-                                    " (use Executable::bind_constants)");
-    const float* registers = constants.registers.empty() ? nullptr : constants.registers.front().data();
-    reinterpret_cast<Entry>(entry_)(&batch, registers, static_cast<int64_t>(constants.registers.size()), sampler,
-                                    &sample_callback);
-}
-
 namespace {
 
 // The JIT cache's key of a group of shaders: cache_key() of their IR as emitted, their names
@@ -945,7 +933,8 @@ std::vector<std::shared_ptr<const CompiledShader>> compile_all(std::span<const E
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::vector<std::shared_ptr<const CompiledShader>> compiled;
         for (size_t i = 0; i < executables.size(); ++i)
-            compiled.push_back(std::make_shared<const CompiledShader>(code, entries[i], executables[i]->constant_count(),
+            compiled.push_back(std::make_shared<const CompiledShader>(code, reinterpret_cast<Entry>(entries[i]), &sample_callback,
+                                                                      executables[i]->constant_count(),
                                                                       executables[i]->steps().size(), seconds, from_cache));
         return compiled;
     };

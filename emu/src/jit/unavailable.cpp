@@ -7,10 +7,6 @@ namespace sm2::emu::jit {
 
 struct CompiledShader::Code {};
 
-void CompiledShader::run(const ConstantFile&, Batch&, Sampler*) const {
-    throw std::logic_error("sm2 was built without the JIT (SM2_JIT=OFF)");
-}
-
 bool available() { return false; }
 
 namespace {

@@ -5,10 +5,6 @@ namespace {
 
 using namespace sm2::emu;
 
-void run(const jit::CompiledShader& shader, const ConstantFile& constants, Batch& batch, Sampler* sampler) {
-    shader.run(constants, batch, sampler);
-}
-
 std::shared_ptr<const jit::CompiledShader> compile(const Executable& executable, std::string* error) {
     return jit::compile(executable, error);
 }
@@ -19,7 +15,7 @@ std::vector<std::shared_ptr<const jit::CompiledShader>> compile_all(std::span<co
 }
 
 constexpr jit::module::Functions kFunctions{jit::module::kAbiVersion, sizeof(jit::module::Functions),
-                                            &jit::available, &compile, &compile_all, &run};
+                                            &jit::available, &compile, &compile_all};
 
 }  // namespace
 

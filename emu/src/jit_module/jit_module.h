@@ -19,7 +19,7 @@
 
 namespace sm2::emu::jit::module {
 
-constexpr uint32_t kAbiVersion = 1;
+constexpr uint32_t kAbiVersion = 2;  // 2: CompiledShader holds its callback and runs inline
 
 struct Functions {
     uint32_t abi_version;
@@ -28,7 +28,6 @@ struct Functions {
     std::shared_ptr<const CompiledShader> (*compile)(const Executable& executable, std::string* error);
     std::vector<std::shared_ptr<const CompiledShader>> (*compile_all)(std::span<const Executable* const> executables,
                                                                       std::string* error);
-    void (*run)(const CompiledShader& shader, const ConstantFile& constants, Batch& batch, Sampler* sampler);
 };
 
 }  // namespace sm2::emu::jit::module

@@ -66,9 +66,4 @@ std::vector<std::shared_ptr<const CompiledShader>> compile_all(std::span<const E
     return l.functions->compile_all(executables, error);
 }
 
-// Only the module makes CompiledShaders, so it is loaded when one exists.
-void CompiledShader::run(const ConstantFile& constants, Batch& batch, Sampler* sampler) const {
-    loaded().functions->run(*this, constants, batch, sampler);
-}
-
 }  // namespace sm2::emu::jit
