@@ -127,12 +127,20 @@ void rasterize(const PrimitiveSetup& p, const PixelRect& region, std::vector<Qua
             if (c00 < 0 || c10 < 0 || c01 < 0 || c11 < 0) all_inside = false;
         }
         if (all_inside) {
-            // Every pixel of r: a quad's mask only loses the columns and rows outside r.
-            for (int32_t qy = even_floor(r.top); qy < r.bottom; qy += 2) {
+            // Every pixel of r: a quad's mask only loses the columns and rows outside r. Written
+            // through a pointer into the grown vector: push_back() reloaded the vector's end
+            // after each quad's byte store (which may alias it), 4% of scene 13's run.
+            const int32_t qx0 = even_floor(r.left), qy0 = even_floor(r.top);
+            const auto columns_n = static_cast<size_t>((r.right - qx0 + 1) / 2);
+            const auto rows_n = static_cast<size_t>((r.bottom - qy0 + 1) / 2);
+            const size_t start = quads.size();
+            quads.resize(start + columns_n * rows_n);
+            Quad* out = quads.data() + start;
+            for (int32_t qy = qy0; qy < r.bottom; qy += 2) {
                 const unsigned rows = (qy >= r.top ? 0x3u : 0u) | (qy + 1 < r.bottom ? 0xCu : 0u);
-                for (int32_t qx = even_floor(r.left); qx < r.right; qx += 2) {
+                for (int32_t qx = qx0; qx < r.right; qx += 2) {
                     const unsigned columns = (qx >= r.left ? 0x5u : 0u) | (qx + 1 < r.right ? 0xAu : 0u);
-                    quads.push_back({qx, qy, static_cast<uint8_t>(rows & columns)});
+                    *out++ = {qx, qy, static_cast<uint8_t>(rows & columns)};
                 }
             }
             return;
