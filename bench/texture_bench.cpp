@@ -1,7 +1,8 @@
 // Texels sampled per second through the engine's sampler interface (4 quads = 16 lookups per
-// call) for point, bilinear, trilinear and 16x anisotropic filtering on A8R8G8B8, DXT1 and
-// A16B16G16R16F and A16B16G16R16 256x256 textures with full mip chains, DXT1 through the per-lane path too, and
-// bilinear WRAP on a 320x240 texture by both paths. Run: build/bench/texture_bench
+// call) for point, bilinear, trilinear and 16x anisotropic filtering on A8R8G8B8, DXT1,
+// A16B16G16R16F and A16B16G16R16 256x256 textures with full mip chains, DXT1 through the
+// per-lane path too, and bilinear WRAP on a 320x240 texture by both paths.
+// Run: build/bench/texture_bench
 #include <benchmark/benchmark.h>
 
 #include <cmath>
