@@ -129,7 +129,8 @@ void rasterize(const PrimitiveSetup& p, const PixelRect& region, std::vector<Qua
         if (all_inside) {
             // Every pixel of r: a quad's mask only loses the columns and rows outside r. Written
             // through a pointer into the grown vector: push_back() reloaded the vector's end
-            // after each quad's byte store (which may alias it), 4% of scene 13's run.
+            // after each quad's byte store (which may alias it); rasterize() went from 4.1% to
+            // 2.8% of scene 13's profile.
             const int32_t qx0 = even_floor(r.left), qy0 = even_floor(r.top);
             const auto columns_n = static_cast<size_t>((r.right - qx0 + 1) / 2);
             const auto rows_n = static_cast<size_t>((r.bottom - qy0 + 1) / 2);

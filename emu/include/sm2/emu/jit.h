@@ -58,7 +58,7 @@ public:
     // caller. std::invalid_argument when the constant file is smaller than the executable's
     // constant count.
     // (Inline, the compiled function called directly: through the module's forwarder it was two
-    // calls and a guarded static a batch, 2% of scene 13's run.)
+    // calls and a guarded static a batch, 2% of scene 13's profile.)
     void run(const ConstantFile& constants, Batch& batch, Sampler* sampler = nullptr) const {
         if (constants.registers.size() < constant_count_) too_few_constants(constants.registers.size());
         const float* registers = constants.registers.empty() ? nullptr : constants.registers.front().data();
