@@ -3,6 +3,7 @@
 // The caller of run() works too, as worker 0, so a pool of N threads starts N - 1.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -32,10 +33,16 @@ private:
     std::mutex mutex_;
     std::condition_variable wake_, done_;
     const std::function<void(unsigned)>* job_ = nullptr;
-    unsigned workers_ = 0;       // workers of the current generation (thread i works if i < workers_)
-    unsigned pending_ = 0;       // pool threads still running the current job
-    uint64_t generation_ = 0;
+    unsigned workers_ = 0;                  // workers of the current generation (thread i works if i < workers_)
+    std::atomic<unsigned> pending_{0};      // pool threads still running the current job
+    std::atomic<uint64_t> generation_{0};
     bool stopping_ = false;
+    // Whether a thread waiting for the next job or for the others to finish spins a while
+    // before it sleeps: where every thread has a core of its own (a draw every few hundred
+    // microseconds, as a scene of many small draws issues them, otherwise paid a sleeping
+    // thread's wake-up twice a draw). Not where threads outnumber the cores: there a spinning
+    // thread would take the core from one with work.
+    bool spin_ = false;
 };
 
 }  // namespace sm2::runtime

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <thread>
 #include <vector>
 
@@ -53,6 +54,23 @@ TEST(WorkerPool, WorkIsSharedThroughACounter) {
         for (size_t k = next.fetch_add(1); k < done.size(); k = next.fetch_add(1)) done[k] += 1;
     });
     for (int d : done) ASSERT_EQ(d, 1);
+}
+
+// Runs back to back (a waiting thread still spinning where the pool has a core per thread) and
+// runs after a pause longer than any spin (the worker asleep): each calls every worker once, and
+// run() returns only after all of them.
+TEST(WorkerPool, BackToBackAndSpacedRunsCallEveryWorkerOnce) {
+    WorkerPool pool(2);
+    for (unsigned round = 0; round < 400; ++round) {
+        if (round % 40 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        const unsigned workers = 1 + round % 2;
+        std::vector<std::atomic<int>> calls(2);
+        pool.run(workers, [&](unsigned w) {
+            if (w == 1 && round % 3 == 0) std::this_thread::sleep_for(std::chrono::microseconds(300));  // the caller waits
+            calls[w].fetch_add(1);
+        });
+        for (unsigned w = 0; w < 2; ++w) ASSERT_EQ(calls[w].load(), w < workers ? 1 : 0) << "round " << round;
+    }
 }
 
 }  // namespace
