@@ -120,46 +120,45 @@ DepthStencilState depth_stencil_state(const RenderState& rs) {
 
 namespace sm2::runtime {
 
-emu::LaneMask depth_stencil_test(const DepthStencilState& st, DepthStencilSurface* surface,
-                                 const std::array<int32_t, emu::kBatchLanes>& x,
-                                 const std::array<int32_t, emu::kBatchLanes>& y,
-                                 const std::array<float, emu::kBatchLanes>& depth,
-                                 emu::LaneMask live, bool clockwise, bool per_lane) {
-    if (!surface || !st.active()) return live;
+emu::LaneMask active_depth_stencil_test(const DepthStencilState& st, DepthStencilSurface& surface,
+                                        const std::array<int32_t, emu::kBatchLanes>& x,
+                                        const std::array<int32_t, emu::kBatchLanes>& y,
+                                        const std::array<float, emu::kBatchLanes>& depth,
+                                        emu::LaneMask live, bool clockwise, bool per_lane) {
     static_assert(emu::kBatchLanes == 16, "depth_stencil_block covers 16 lanes");
-    if (!per_lane && (surface->info().float_depth || surface->info().depth_bits <= 24)) {
+    if (!per_lane && (surface.info().float_depth || surface.info().depth_bits <= 24)) {
         emu::LaneMask passed = 0;
         if (cpu_has_avx512()) {
-            if (avx512::depth_stencil_block(st, *surface, x.data(), y.data(), depth.data(), live, clockwise, passed))
+            if (avx512::depth_stencil_block(st, surface, x.data(), y.data(), depth.data(), live, clockwise, passed))
                 return passed;
         } else if (cpu_has_avx2()) {
-            if (avx2::depth_stencil_block(st, *surface, x.data(), y.data(), depth.data(), live, clockwise, passed))
+            if (avx2::depth_stencil_block(st, surface, x.data(), y.data(), depth.data(), live, clockwise, passed))
                 return passed;
         }
     }
-    const DepthFormatInfo& info = surface->info();
+    const DepthFormatInfo& info = surface.info();
     const bool has_stencil = st.stencil_enable && info.stencil_bits > 0;
-    const uint32_t max = surface->stencil_max();
+    const uint32_t max = surface.stencil_max();
     const StencilFace& face = (st.two_sided && !clockwise) ? st.back : st.front;
     emu::LaneMask passed = 0;
     for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
         if (!(live >> l & 1u)) continue;
-        if (x[l] < 0 || y[l] < 0 || static_cast<uint32_t>(x[l]) >= surface->width() ||
-            static_cast<uint32_t>(y[l]) >= surface->height())
+        if (x[l] < 0 || y[l] < 0 || static_cast<uint32_t>(x[l]) >= surface.width() ||
+            static_cast<uint32_t>(y[l]) >= surface.height())
             continue;
         const auto px = static_cast<uint32_t>(x[l]), py = static_cast<uint32_t>(y[l]);
         bool stencil_pass = true;
         uint32_t stored_stencil = 0;
         if (st.stencil_enable) {
             // Without stencil bits the stored value reads 0 and nothing is written.
-            stored_stencil = has_stencil ? surface->stencil(px, py) : 0;
+            stored_stencil = has_stencil ? surface.stencil(px, py) : 0;
             stencil_pass = compare(face.func, st.ref & st.mask, stored_stencil & st.mask);
         }
         bool depth_pass = true;
         uint32_t incoming = 0;
         if (stencil_pass && st.depth_enable) {
             incoming = quantize_depth(info, depth[l]);
-            const uint32_t stored = surface->stored_depth(px, py);
+            const uint32_t stored = surface.stored_depth(px, py);
             depth_pass = info.float_depth
                              ? compare(st.depth_func, std::bit_cast<float>(incoming), std::bit_cast<float>(stored))
                              : compare(st.depth_func, incoming, stored);
@@ -168,10 +167,10 @@ emu::LaneMask depth_stencil_test(const DepthStencilState& st, DepthStencilSurfac
             const StencilOp op = !stencil_pass ? face.fail : !depth_pass ? face.zfail : face.pass;
             const uint32_t next = apply_stencil_op(op, stored_stencil, st.ref, max);
             const uint32_t wm = st.write_mask & max;
-            surface->set_stencil(px, py, (stored_stencil & ~wm) | (next & wm));
+            surface.set_stencil(px, py, (stored_stencil & ~wm) | (next & wm));
         }
         if (!stencil_pass || !depth_pass) continue;
-        if (st.depth_enable && st.depth_write) surface->set_stored_depth(px, py, incoming);
+        if (st.depth_enable && st.depth_write) surface.set_stored_depth(px, py, incoming);
         passed |= emu::LaneMask{1} << l;
     }
     return passed;

@@ -677,9 +677,8 @@ emu::LaneMask merge(const OutputMergerState& s, const RenderTargets& targets, co
         for (unsigned l = 0; l < kLanes; ++l)
             if ((live >> l & 1u) && !alpha_test_passes(s, color0[3][l], plan.alpha_clamps)) live &= ~(emu::LaneMask{1} << l);
     }
-    // Stencil, depth, stencil update (§11). (The test for a surface and an active state here:
-    // the call that made it cost scene 13, which has no depth buffer, 0.8% of its run.)
-    if (!in.depth_stencil_done && targets.depth_stencil != nullptr && s.depth_stencil.active())
+    // Stencil, depth, stencil update (§11).
+    if (!in.depth_stencil_done)
         live = depth_stencil_test(s.depth_stencil, targets.depth_stencil, lanes.x, lanes.y, unclamped_depth, live,
                                   lanes.clockwise, in.generic_path);
 

@@ -1,6 +1,4 @@
 // The JIT in a build without LLVM (SM2_JIT=OFF): nothing compiles, callers use the interpreter.
-#include <stdexcept>
-
 #include "sm2/emu/jit.h"
 
 namespace sm2::emu::jit {
