@@ -8,6 +8,7 @@
 //   tiles    = setups binned by their bounds; each tile is owned by one thread and rasterizes,
 //              interpolates, shades and merges its primitives in draw order
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
 #include <chrono>
@@ -200,7 +201,8 @@ struct PixelPipeline {
 struct TileWorker {
     emu::Batch batch;
     PixelLanes lanes;
-    std::vector<Quad> quads;
+    std::array<Quad, kTileQuads> tile_quads;  // one primitive's quads in one tile (process_tile)
+    std::vector<Quad> quads;                  // pixel history's
     TextureSampler sampler;
     uint64_t pixels_shaded = 0, pixels_rasterized = 0, pixels_killed = 0, pixels_written = 0;
 };
@@ -267,12 +269,11 @@ void process_tile(const PixelPipeline& pipe, std::span<const PrimitiveSetup> set
     NoObserver none;
     for (uint32_t index : primitives) {
         const PrimitiveSetup& prim = setups[index];
-        w.quads.clear();
-        rasterize(prim, region, w.quads, pipe.reference_paths);
-        for (size_t q = 0; q < w.quads.size(); q += emu::kBatchQuads) {
-            const size_t n = std::min<size_t>(emu::kBatchQuads, w.quads.size() - q);
-            shade_quads(pipe, prim, std::span<const Quad>(w.quads).subspan(q, n), w, none);
-        }
+        // (A tile's region: at most kTileQuads quads.)
+        const size_t count = rasterize(prim, region, w.tile_quads.data(), pipe.reference_paths);
+        const std::span<const Quad> quads(w.tile_quads.data(), count);
+        for (size_t q = 0; q < count; q += emu::kBatchQuads)
+            shade_quads(pipe, prim, quads.subspan(q, std::min<size_t>(emu::kBatchQuads, count - q)), w, none);
     }
 }
 

@@ -2,11 +2,14 @@
 // scissor, tiles and quads, points and lines. Every expected pixel set is derived by hand.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <random>
 #include <set>
 #include <utility>
+#include <vector>
 
 #include "sm2/runtime/rasterizer.h"
 
@@ -213,6 +216,47 @@ TEST(Rasterizer, ScissorAndTiles) {
             }
     EXPECT_EQ(tiled, whole);
     EXPECT_GT(whole.size(), 1000u);
+}
+
+// max_quads(): every quad a rectangle touches, counted by hand. rasterize() into a buffer of
+// exactly that many quads (on the heap: a write past it is an AddressSanitizer error) gives the
+// quads of the vector form, for a triangle covering the whole region (one quad per slot) and
+// for ones covering part of it, on both loops.
+TEST(Rasterizer, MaxQuadsBoundsWhatRasterizeWrites) {
+    EXPECT_EQ(max_quads({0, 0, 32, 32}), 256u);  // a tile: 16 x 16 quads
+    EXPECT_EQ(max_quads({1, 1, 3, 3}), 4u);      // x 1, 2 and y 1, 2: quads at 0 and 2 both ways
+    EXPECT_EQ(max_quads({2, 3, 5, 6}), 4u);      // x 2..4: quads 2, 4; y 3..5: quads 2, 4
+    EXPECT_EQ(max_quads({4, 4, 5, 5}), 1u);
+    EXPECT_EQ(max_quads({5, 5, 5, 9}), 0u);      // empty
+    // A triangle over the whole 32x32 target: every pixel inside, each quad of the region full.
+    PrimitiveSetup whole;
+    ASSERT_TRUE(setup_triangle(at(-40, -40), at(200, -40), at(-40, 200), at(0, 0), state32(), whole));
+    std::mt19937 rng(11);
+    std::uniform_int_distribution<int32_t> pos(0, 32), edge(-3, 35);
+    for (int n = 0; n < 300; ++n) {
+        PrimitiveSetup partial;
+        const PrimitiveSetup* p = &whole;
+        if (n % 3 != 0) {
+            if (!setup_triangle(at(pos(rng), pos(rng)), at(pos(rng), pos(rng)), at(pos(rng), pos(rng)), at(0, 0), state32(), partial))
+                continue;
+            p = &partial;
+        }
+        const int32_t a = edge(rng), b = edge(rng), c = edge(rng), d = edge(rng);
+        const PixelRect region{std::min(a, b), std::min(c, d), std::max(a, b) + 1, std::max(c, d) + 1};
+        const size_t room = max_quads(region.intersect(p->bounds));
+        for (const bool portable : {false, true}) {
+            std::vector<Quad> expect;
+            rasterize(*p, region, expect, portable);
+            const auto buffer = std::make_unique<Quad[]>(std::max<size_t>(room, 1));
+            const size_t count = rasterize(*p, region, buffer.get(), portable);
+            ASSERT_LE(count, room) << n;
+            ASSERT_EQ(count, expect.size()) << n;
+            for (size_t q = 0; q < count; ++q) EXPECT_EQ(buffer[q], expect[q]) << n << " quad " << q;
+            if (p == &whole) {
+                EXPECT_EQ(count, room) << n;  // every quad of the region, none twice
+            }
+        }
+    }
 }
 
 TEST(Rasterizer, QuadMasksFollowLaneOrder) {

@@ -17,6 +17,7 @@
 // A zero-length line draws the pixel nearest its point when LASTPIXEL is TRUE, else nothing.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -41,10 +42,18 @@ struct Quad {
 // render target and scissor rectangle).
 [[nodiscard]] bool covers(const PrimitiveSetup& prim, int32_t px, int32_t py);
 
-// Appends the quads with at least one covered pixel inside `region`, rows of quads from top to
-// bottom, each row left to right. Pixels outside `region` are not in any mask. Triangles that
-// cover part of the region take an AVX-512 loop (8 quads at a time) where the CPU has it;
-// `portable` forces the scalar loop, which gives the same quads (DeviceOptions::reference_paths).
+// The most quads rasterize() can write for a region (after its intersection with the
+// primitive's bounds): every quad the rectangle touches. A tile's is at most kTileQuads.
+[[nodiscard]] size_t max_quads(const PixelRect& region);
+constexpr size_t kTileQuads = static_cast<size_t>(kTileSize / 2) * static_cast<size_t>(kTileSize / 2);
+
+// Writes the quads with at least one covered pixel inside `region` from `out` (room for
+// max_quads(region) of them) and returns their count: rows of quads from top to bottom, each
+// row left to right. Pixels outside `region` are not in any mask. Triangles that cover part of
+// the region take an AVX-512 loop (8 quads at a time) where the CPU has it; `portable` forces
+// the scalar loop, which gives the same quads (DeviceOptions::reference_paths).
+size_t rasterize(const PrimitiveSetup& prim, const PixelRect& region, Quad* out, bool portable = false);
+// The same, appended to `quads`.
 void rasterize(const PrimitiveSetup& prim, const PixelRect& region, std::vector<Quad>& quads, bool portable = false);
 
 }  // namespace sm2::runtime
