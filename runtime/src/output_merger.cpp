@@ -625,6 +625,12 @@ MergePlan merge_plan(const OutputMergerState& s, const RenderTargets& targets, c
         if (unorm.wide && block) {
             target.path = unorm.words == 2 ? TargetPath::Unorm8Block8 : TargetPath::Unorm8Block;
             target.bytes = unorm.valid;
+            // Source over with an alpha that saturates to +0: every channel, blended or masked,
+            // is d = s * 0 + d * 1 (s saturated first, d in [0, 1]), which encodes back to the
+            // same field; where every bit of the texel is a field's (Unorm8Texel::full; a write
+            // clears X bits) the bytes stay as they are. Nothing to read or write (the
+            // transparent parts of blended slices and sprites).
+            target.transparent_skips = unorm.full && s.blend.enable && source_over(s.blend);
         } else if (unorm.valid) {
             target.path = TargetPath::Unorm8Lanes;
         } else if (const FloatTexel& floats = *target.floats; floats.valid) {
@@ -688,6 +694,12 @@ emu::LaneMask merge(const OutputMergerState& s, const RenderTargets& targets, co
         Surface* const surface = targets.color[t];
         const uint32_t mask = target.mask;
         const bool fixed = target.fixed, srgb = target.srgb;
+        const ShaderColor& src = t == 0 ? color0 : batch.render_target(t);
+        // (transparent_skips: a block path, so plan.block. Tested on `live`, a superset of the
+        // lanes written.)
+        if (target.transparent_skips &&
+            (avx512_block ? avx512::transparent_block(src, live) : avx2::transparent_block(src, live)))
+            continue;
         // The live lanes inside the surface, and a key per lane that differs between pixels (one
         // vectorized loop: no branches).
         emu::LaneMask write = 0;
@@ -712,7 +724,6 @@ emu::LaneMask merge(const OutputMergerState& s, const RenderTargets& targets, co
             distinct = distinct_pixels(key, misplaced == 0);
         }
         if (!write) continue;
-        const ShaderColor& src = t == 0 ? color0 : batch.render_target(t);
 
         // The 8-bit paths blend the batch's texels at once: a pixel two lanes write (not
         // `distinct`) goes pixel by pixel, where the later lane blends onto the earlier one.

@@ -107,6 +107,10 @@ struct TargetPlan {
     // floats), looked up once a draw: per batch, the tables' guarded statics cost scene 13 1%.
     const Unorm8Texel* unorm8 = nullptr;
     const FloatTexel* floats = nullptr;
+    // Source-over blending (SRCALPHA, INVSRCALPHA, ADD) onto a block path's texels whose every
+    // bit is a field's: a batch whose alpha saturates to +0 on every lane writes each texel back
+    // as it was (merge() skips it).
+    bool transparent_skips = false;
 };
 // The blending the 8-bit block kernel (Unorm8Block with `bytes`) is compiled for: Any tests the
 // state per batch; the others hold it as a compile-time fact, so that the kernel's code carries
