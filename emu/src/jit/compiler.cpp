@@ -814,10 +814,6 @@ llvm::Expected<std::unique_ptr<llvm::Module>> kernel_module(llvm::LLVMContext& c
     return parsed;
 }
 
-// Adds the out-of-line copy of kernel `name` (Emitter::call_shared) to the main JITDylib, once
-// per process: the same bitcode and passes as an inlined one, so the same results. ORC
-// compiles it when the first routine that calls it is looked up (its compile time counts in
-// that routine's).
 // The shared kernel `name` compiled, linked and executable before any routine that calls it
 // is added (a lookup materializes it here, under the caller's lock). Left to the first routine's
 // own lookup, several threads compiling at once ran routines that called into the kernel's code
@@ -829,6 +825,10 @@ std::string finish_shared_kernel(Host& host, const std::string& name) {
     return {};
 }
 
+// Adds the out-of-line copy of kernel `name` (Emitter::call_shared) to the main JITDylib, once
+// per process: the same bitcode and passes as an inlined one, so the same results. It is
+// compiled here (finish_shared_kernel()), within the compile of the first routine that calls it
+// (its compile time counts in that routine's).
 std::string add_shared_kernel(Host& host, const std::string& name) {
     std::lock_guard lock(host.shared_mutex);
     if (host.shared_kernels.count(name) != 0) return {};
