@@ -202,7 +202,6 @@ struct TileWorker {
     emu::Batch batch;
     PixelLanes lanes;
     std::array<Quad, kTileQuads> tile_quads;  // one primitive's quads in one tile (process_tile)
-    std::vector<Quad> quads;                  // pixel history's
     TextureSampler sampler;
     uint64_t pixels_shaded = 0, pixels_rasterized = 0, pixels_killed = 0, pixels_written = 0;
 };
@@ -570,13 +569,14 @@ void record_pixel_history(PixelWatch& watch, const PixelPipeline& pipe, Primitiv
     const PixelRect pixel{static_cast<int32_t>(x), static_cast<int32_t>(y), static_cast<int32_t>(x) + 1, static_cast<int32_t>(y) + 1};
     TileWorker w;
     w.sampler = sampler;
+    std::vector<Quad> quads;  // the watched pixel's quad, if a primitive covers it
     for (uint32_t p = 0; p < primitives.size(); ++p) {
         const auto setups = setup_primitives(type, fill_mode, primitives.subspan(p, 1), shaded, slots, clip, setup_state);
         bool covered = false;
         for (const PrimitiveSetup& prim : setups) {
-            w.quads.clear();
-            rasterize(prim, pixel, w.quads);
-            if (w.quads.empty()) continue;
+            quads.clear();
+            rasterize(prim, pixel, quads);
+            if (quads.empty()) continue;
             covered = true;
             PixelFragment f;
             f.primitive = p;
@@ -585,7 +585,7 @@ void record_pixel_history(PixelWatch& watch, const PixelPipeline& pipe, Primitiv
             f.depth_before = start.depth;
             f.stencil_before = start.stencil;
             PixelRecorder recorder{x, y, &w, &f, pipe.ps, debug != nullptr, nullptr};
-            shade_quads(pipe, prim, std::span<const Quad>(w.quads), w, recorder);
+            shade_quads(pipe, prim, std::span<const Quad>(quads), w, recorder);
             if (debug && recorder.shader_input && recorder.lane() >= 0) {
                 // The same quad again, from the same inputs, one source instruction at a time.
                 auto trace = trace_shader(*debug, *recorder.shader_input, &w.sampler);
@@ -593,7 +593,7 @@ void record_pixel_history(PixelWatch& watch, const PixelPipeline& pipe, Primitiv
                 trace->watched_lane = static_cast<unsigned>(recorder.lane());
                 // The pass ran on one pixel: the quad's other lanes are covered if the primitive
                 // covers them in the draw.
-                const Quad& quad = w.quads.front();
+                const Quad& quad = quads.front();
                 std::vector<Quad> whole_quad;
                 rasterize(prim, PixelRect{quad.x, quad.y, quad.x + 2, quad.y + 2}, whole_quad);
                 trace->covered = whole_quad.empty() ? w.lanes.coverage & 0xFu : whole_quad.front().mask;
@@ -620,9 +620,9 @@ void record_pixel_history(PixelWatch& watch, const PixelPipeline& pipe, Primitiv
             // Outside the scissor rectangle: does the primitive cover the pixel without it?
             for (const PrimitiveSetup& prim :
                  setup_primitives(type, fill_mode, primitives.subspan(p, 1), shaded, slots, clip, unscissored_state)) {
-                w.quads.clear();
-                rasterize(prim, pixel, w.quads);
-                if (w.quads.empty()) continue;
+                quads.clear();
+                rasterize(prim, pixel, quads);
+                if (quads.empty()) continue;
                 PixelFragment f;
                 f.primitive = p;
                 f.scissored = true;
