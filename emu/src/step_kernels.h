@@ -72,6 +72,16 @@ inline void fetch_register(Vector<Real>& dst, const Vector<Real>& reg, unsigned 
     }
 }
 
+// Whether fetch_register() copies the register as it is: every channel it fetches read from
+// its own component, not negated. The JIT then hands the step's kernel the register itself,
+// not a copy (jit/compiler.cpp).
+constexpr bool fetch_is_copy(unsigned swizzle, bool negate, unsigned channels) {
+    if (negate) return false;
+    for (unsigned c = 0; c < 4; ++c)
+        if (has(channels, c) && component(swizzle, c) != c) return false;
+    return true;
+}
+
 template <typename Real>
 inline void fetch_lanes(Vector<Real>& dst, const BasicBatch<Real>& batch, unsigned slot, unsigned swizzle,
                         bool negate, unsigned channels) {

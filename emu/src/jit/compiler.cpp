@@ -526,6 +526,12 @@ private:
 
     llvm::Value* u32(unsigned value) { return builder_->getInt32(value); }
 
+    // `bytes` past `pointer`.
+    llvm::Value* byte_offset(llvm::Value* pointer, uint64_t bytes) {
+        return builder_->CreateConstInBoundsGEP1_64(builder_->getInt8Ty(),
+                                                    builder_->CreatePointerCast(pointer, builder_->getInt8PtrTy()), bytes);
+    }
+
     // Register `slot` of the batch.
     llvm::Value* batch_register(unsigned slot) {
         static const size_t registers = [] {
@@ -582,7 +588,9 @@ private:
     // scratch vectors of its own: the step's scratch vectors stay in registers (SROA gives up
     // on a vector whose address leaves the function). The declaration carries the attributes
     // clang inferred for the kernel (nounwind, its pointers noalias and read- or write-only).
-    std::string call_shared(const std::string& name, unsigned source_count, unsigned mask) {
+    // Only the channels each source fetched are copied: a source may be the register itself
+    // (emit_fetch), whose other channels nothing reads.
+    std::string call_shared(const std::string& name, const Step& step, const std::array<llvm::Value*, 3>& sources) {
         llvm::Function* kernel = module_.getFunction(name);
         if (kernel == nullptr || kernel->isDeclaration()) return "the kernel bitcode has no " + name;
         const std::string shared_name = name + kSharedSuffix;
@@ -591,15 +599,19 @@ private:
         if (shared == nullptr) return "kernel " + shared_name + " takes other arguments";
         shared->setAttributes(kernel->getAttributes());
         for (const char* target : {"target-cpu", "target-features", "tune-cpu"}) shared->removeFnAttr(target);
-        const auto bytes = builder_->getInt64(4 * kBatchLanes * sizeof(float));
+        constexpr uint64_t channel_bytes = kBatchLanes * sizeof(float);
         const llvm::MaybeAlign align(64);
-        for (unsigned k = 0; k < source_count; ++k)
-            builder_->CreateMemCpy(call_sources_[k], align, sources_[k], align, bytes);
-        if (std::string error =
-                call(shared, {call_result_, call_sources_[0], call_sources_[1], call_sources_[2], u32(mask)});
+        for (unsigned k = 0; k < step.source_count; ++k)
+            for (unsigned c = 0; c < 4; ++c)
+                if (kernels::has(step.sources[k].channels, c))
+                    builder_->CreateMemCpy(byte_offset(call_sources_[k], c * channel_bytes), align,
+                                           byte_offset(sources[k], c * channel_bytes), align,
+                                           builder_->getInt64(channel_bytes));
+        if (std::string error = call(shared, {call_result_, call_sources_[0], call_sources_[1], call_sources_[2],
+                                              u32(step.dest.mask)});
             !error.empty())
             return error;
-        builder_->CreateMemCpy(result_, align, call_result_, align, bytes);
+        builder_->CreateMemCpy(result_, align, call_result_, align, builder_->getInt64(4 * channel_bytes));
         if (std::find(shared_kernels_.begin(), shared_kernels_.end(), name) == shared_kernels_.end())
             shared_kernels_.push_back(name);
         return {};
@@ -621,10 +633,18 @@ private:
         return !(exponent.kind == OperandKind::Constant && defs_.count(exponent.index) != 0);
     }
 
-    std::string emit_fetch(llvm::Value* scratch, const StepSource& s) {
+    // Fetches source `s` into `scratch`, or points `source` (the scratch vector the step's kernel
+    // reads) at the register itself where the fetch would copy it as it is: the kernel reads the
+    // same values, and the copies (a fifth of the code the inliner and SROA went through) are
+    // not made.
+    std::string emit_fetch(llvm::Value* scratch, llvm::Value*& source, const StepSource& s) {
         switch (s.kind) {
         case OperandKind::Lanes:
             if (s.index >= kSlotCount) return "source slot out of range";
+            if (kernels::fetch_is_copy(s.swizzle, s.negate, s.channels)) {
+                source = register_pointer(s.index);
+                return {};
+            }
             return call("sm2_k_fetch_register",
                         {scratch, register_pointer(s.index), u32(s.swizzle), u32(s.negate), u32(s.channels)});
         case OperandKind::Constant:
@@ -652,14 +672,15 @@ private:
     // IR passes (alu64's pixel shader compiled in 33.4 -> 29.9-31.7 ms, the same IR).
     std::string emit_step(const Step& step, bool fast) {
         if (step.source_count > sources_.size()) return "too many sources";
+        std::array<llvm::Value*, 3> sources{sources_[0], sources_[1], sources_[2]};
         for (unsigned k = 0; k < step.source_count; ++k)
-            if (std::string error = emit_fetch(sources_[k], step.sources[k]); !error.empty()) return error;
+            if (std::string error = emit_fetch(sources_[k], sources[k], step.sources[k]); !error.empty()) return error;
         const unsigned mask = step.dest.mask;
         switch (step.opcode) {
-        case Opcode::Mova: return call("sm2_k_mova", {batch_, sources_[0], u32(mask)});
-        case Opcode::TexKill: return call("sm2_k_texkill", {batch_, sources_[0], u32(step.sources[0].channels)});
+        case Opcode::Mova: return call("sm2_k_mova", {batch_, sources[0], u32(mask)});
+        case Opcode::TexKill: return call("sm2_k_texkill", {batch_, sources[0], u32(step.sources[0].channels)});
         case Opcode::Tex:
-            if (std::string error = call("sm2_k_tex", {result_, sources_[0], batch_, u32(step.sampler),
+            if (std::string error = call("sm2_k_tex", {result_, sources[0], batch_, u32(step.sampler),
                                                        u32(step.control), sampler_, sample_});
                 !error.empty())
                 return error;
@@ -668,8 +689,8 @@ private:
             const std::string name = kernel_name(step.opcode, fast);
             if (name.empty()) return {};  // as the interpreter: lowering emits nothing else
             if (std::string error = out_of_line(step, fast)
-                                        ? call_shared(name, step.source_count, mask)
-                                        : call(name, {result_, sources_[0], sources_[1], sources_[2], u32(mask)});
+                                        ? call_shared(name, step, sources)
+                                        : call(name, {result_, sources[0], sources[1], sources[2], u32(mask)});
                 !error.empty())
                 return error;
             break;

@@ -8,9 +8,10 @@
 //
 // Pointers: `batch` is a Batch (BasicBatch<float>); `dst`, `result`, `a`, `b`, `c` are
 // kernels::Vector<float> scratch vectors (4 x kBatchLanes floats); `constants` is the
-// ConstantFile's registers (4 floats each). No two of them overlap (the JIT gives every source
-// and the result their own scratch vector), hence __restrict: the lane loops vectorize without
-// overlap checks.
+// ConstantFile's registers (4 floats each). The result is the JIT's own scratch vector, which
+// no source overlaps; two sources may be the same register (a source fetched as it is is read
+// in place, jit/compiler.cpp's emit_fetch), which __restrict allows for pointers only read.
+// Hence __restrict: the lane loops vectorize without overlap checks.
 #include <cstdint>
 
 #include "step_kernels.h"
