@@ -24,6 +24,7 @@
 #include "device_internal.h"
 #include "fixed_function_programs.h"
 #include "worker_pool.h"
+#include "sm2/emu/alpha_source.h"
 #include "sm2/isa/validator.h"
 #include "sm2/runtime/interpolation.h"
 #include "sm2/runtime/output_merger.h"
@@ -227,6 +228,23 @@ constexpr uint64_t lanes_in(emu::LaneMask mask) {
     return (x + (x >> 8)) & 0x1Fu;
 }
 static_assert(lanes_in(0) == 0 && lanes_in(0xFFFF) == 16 && lanes_in(0x8001) == 2 && lanes_in(0x7FFE) == 14);
+
+// The sampler stage whose lookups may leave their colour unset where their alpha is transparent
+// on every lane (TextureSampler::set_alpha_gate): the stage of the one texld whose alpha the
+// shader's oC0.w follows (emu::alpha_source_sampler), in a draw that writes render target 0
+// alone and skips its transparent batches (TargetPlan::transparent_skips). Such a batch writes
+// nothing, so no colour of it is read. Not with texkill or oDepth, whose lanes and depth the
+// colour could decide.
+std::optional<unsigned> alpha_gate_stage(const emu::Executable& ps, const MergePlan& plan, const MergeInput& outputs,
+                                         bool kills) {
+    if (kills || outputs.shader_depth || outputs.color_outputs != 1u || !plan.targets[0].transparent_skips)
+        return std::nullopt;
+    for (unsigned t = 1; t < kMaxRenderTargets; ++t)
+        if (plan.targets[t].path != TargetPath::Skip) return std::nullopt;
+    const std::optional<unsigned> stage = emu::alpha_source_sampler(ps);
+    if (!stage || *stage >= TextureSampler::kStages) return std::nullopt;
+    return stage;
+}
 
 template <class Observer>
 void shade_quads(const PixelPipeline& pipe, const PrimitiveSetup& prim, std::span<const Quad> quads,
@@ -840,6 +858,10 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
         sampler.set_texture(stage, &snapshots.back());
     }
     sampler.prepare();
+    // Pixel history records the shader's outputs as they are: its pass samples without the gate.
+    const TextureSampler history_sampler = sampler;
+    if (const std::optional<unsigned> stage = alpha_gate_stage(ps, pipe.merge_plan, pipe.merge_template, kills))
+        sampler.set_alpha_gate(*stage, true);
     if (!pool_) pool_ = std::make_unique<WorkerPool>(options_.threads);
     // Pixel history (sm2 pixel): one test per draw; the tiles run as they always do.
     std::optional<PixelBytes> watched_before;
@@ -862,7 +884,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
             ps_debug = debug_shader(pixel_shader_ ? pixel_shader_->shader : ff_ps, !pixel_shader_, ps_flow, ps_outputs,
                                     options_.precision, pixel_shader_ ? std::span(ps_f_) : std::span(ff_ps_constants));
         record_pixel_history(*pixel_watch_, pipe, type, render_state_.fill_mode, assembled.primitives, shaded,
-                             unique.slots, clip, setup_state, unscissored, render_state_.scissor_test_enable, sampler,
+                             unique.slots, clip, setup_state, unscissored, render_state_.scissor_test_enable, history_sampler,
                              *watched_before, pipe.merge_template.shader_depth, ps_debug ? &*ps_debug : nullptr);
         stats_ = counted;
     }

@@ -1023,11 +1023,12 @@ void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::
         if (levels_ptr != nullptr) {
             const Context& c = levels_ptr->context;
             auto& memo = level_memo_[request.sampler];
+            const bool gated = alpha_gates_[request.sampler];
             if (levels_ptr->avx512)
-                return c.cube ? avx512::block_sample<true>(c, *levels_ptr, request, quads, memo, texels)
-                              : avx512::block_sample<false>(c, *levels_ptr, request, quads, memo, texels);
-            return c.cube ? avx2::block_sample<true>(c, *levels_ptr, request, quads, memo, texels)
-                          : avx2::block_sample<false>(c, *levels_ptr, request, quads, memo, texels);
+                return c.cube ? avx512::block_sample<true>(c, *levels_ptr, request, quads, gated, memo, texels)
+                              : avx512::block_sample<false>(c, *levels_ptr, request, quads, gated, memo, texels);
+            return c.cube ? avx2::block_sample<true>(c, *levels_ptr, request, quads, gated, memo, texels)
+                          : avx2::block_sample<false>(c, *levels_ptr, request, quads, gated, memo, texels);
         }
     }
     sample_lanes(request, quads, texels);

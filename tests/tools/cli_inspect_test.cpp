@@ -375,6 +375,50 @@ TEST(CliPixel, TextNamesEachTest) {
     EXPECT_NE(r.out.find("final: (1, 0.501961, 0, 1)"), std::string::npos) << r.out;
 }
 
+// A transparent volume slice (scene 13's shader): the texel (r, g, b, a) = (15, 9, 3, 0) / 15 of a
+// 1x1x1 A4R4G4B4 volume, its alpha times 0.5, blended SRCALPHA / INVSRCALPHA. The draw lets the
+// sampler leave the colour of lookups transparent on every lane (TextureSampler::set_alpha_gate):
+// nothing is written. The history still shows the colour the shader computed.
+const std::string kTransparentSlice =
+    "sm2cs 1\n"
+    "CreateDevice 4 4 A8R8G8B8\n"
+    "CreateVolumeTexture vol 1 1 1 1 A4R4G4B4\n"
+    "LockBox vol 0 u16[ 3987 ]\n"  // 0x0F93
+    "CreateVertexDeclaration decl { 0 0 FLOAT3 DEFAULT POSITION 0 }\n"
+    "CreateVertexShader vs asm<<END\nvs_2_0\ndcl_position v0\nmov oPos, v0\nmov oT0, c0\nEND\n"
+    "CreatePixelShader ps asm<<END\nps_2_0\ndcl t0.xyz\ndcl_volume s0\ntexld r0, t0, s0\n"
+    "mul r0.w, r0.w, c0.x\nmov oC0, r0\nEND\n"
+    "SetVertexDeclaration decl\n"
+    "SetVertexShader vs\n"
+    "SetPixelShader ps\n"
+    "SetTexture 0 vol\n"
+    "SetSamplerState 0 MAGFILTER LINEAR\n"
+    "SetSamplerState 0 MINFILTER LINEAR\n"
+    "SetRenderState ALPHABLENDENABLE TRUE\n"
+    "SetRenderState SRCBLEND SRCALPHA\n"
+    "SetRenderState DESTBLEND INVSRCALPHA\n"
+    "SetVertexShaderConstantF 0 f32[ 0.5 0.5 0.5 1 ]\n"
+    "SetPixelShaderConstantF 0 f32[ 0.5 0 0 0 ]\n"
+    "Clear TARGET 0xFF000080 1 0\n"
+    "BeginScene\n"
+    "DrawPrimitiveUP TRIANGLESTRIP 2 12 f32[ -1 1 0.5   1 1 0.5   -1 -1 0.5   1 -1 0.5 ]\n"
+    "EndScene\n"
+    "Present\n";
+
+TEST(CliPixel, TransparentLookupsKeepTheirColourInTheHistory) {
+    const std::string stream = tmp("transparent_slice.sm2cs");
+    write_file(stream, kTransparentSlice);
+    const double half = 128.0 / 255.0;
+    const auto j = pixel_json(stream, 0, "1,2");
+    ASSERT_EQ(j["draws"].size(), 1u) << j.dump();
+    const auto& fragment = j["draws"][0]["fragments"][0];
+    expect_colour(fragment["shader_color"], 1, 9.0 / 15.0, 3.0 / 15.0, 0, "shader");
+    expect_colour(fragment["before"]["color"], 0, 0, half, 1, "before (the clear)");
+    expect_colour(fragment["after"]["color"], 0, 0, half, 1, "after: unchanged");
+    expect_colour(j["final"], 0, 0, half, 1, "final");
+    EXPECT_EQ(j["consistent"], true);
+}
+
 TEST(CliPixel, ShaderSceneTraceStencilAndBlend) {
     // shader_scene.trace frame 0, pixel (128, 128): call 49 draws the textured quad; call 64 writes
     // stencil 1 with colour writes off (COLORWRITEENABLE 0, calls 54..58); call 73 blends a

@@ -98,6 +98,13 @@ public:
         block_avx2_ = forced;
         forget_prepared();
     }
+    // The alpha gate (a draw sets it where alpha_source_sampler() names the stage and the draw
+    // writes nothing where the shader's alpha saturates to +0: draw.cpp): a lookup of the stage
+    // whose alpha is +0, -0 or NaN on every lane that shades (not a helper lane) may leave red,
+    // green and blue +0 instead of their values. The block path's volume lookups of one level
+    // do, which skips three quarters of their decoding and sums; every other lookup ignores it.
+    void set_alpha_gate(unsigned stage, bool gated) { alpha_gates_.at(stage) = gated; }
+    [[nodiscard]] bool alpha_gate(unsigned stage) const { return alpha_gates_.at(stage); }
     // Whether sample() takes the 16-lane path for this stage's texture and state.
     [[nodiscard]] bool block_path_applies(unsigned stage) const;
     // Decides the block path and builds its level tables for every stage now, once (a draw calls
@@ -153,6 +160,7 @@ private:
     std::array<bool, kStages> prepared_{};
     std::array<std::shared_ptr<const BlockLevels>, kStages> block_levels_{};
     std::array<BatchLevelMemo, kStages> level_memo_{};  // valid only while the stage stays prepared
+    std::array<bool, kStages> alpha_gates_{};
     // The stage's block-path tables, or null where the block path does not apply.
     [[nodiscard]] std::shared_ptr<const BlockLevels> block_levels_for(unsigned stage) const;
     // sample() for a request the block path does not take: lane by lane.
