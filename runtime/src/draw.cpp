@@ -859,7 +859,8 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     }
     sampler.prepare();
     // Pixel history records the shader's outputs as they are: its pass samples without the gate.
-    const TextureSampler history_sampler = sampler;
+    std::optional<TextureSampler> history_sampler;
+    if (pixel_watch_) history_sampler = sampler;
     if (const std::optional<unsigned> stage = alpha_gate_stage(ps, pipe.merge_plan, pipe.merge_template, kills))
         sampler.set_alpha_gate(*stage, true);
     if (!pool_) pool_ = std::make_unique<WorkerPool>(options_.threads);
@@ -884,7 +885,7 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
             ps_debug = debug_shader(pixel_shader_ ? pixel_shader_->shader : ff_ps, !pixel_shader_, ps_flow, ps_outputs,
                                     options_.precision, pixel_shader_ ? std::span(ps_f_) : std::span(ff_ps_constants));
         record_pixel_history(*pixel_watch_, pipe, type, render_state_.fill_mode, assembled.primitives, shaded,
-                             unique.slots, clip, setup_state, unscissored, render_state_.scissor_test_enable, history_sampler,
+                             unique.slots, clip, setup_state, unscissored, render_state_.scissor_test_enable, *history_sampler,
                              *watched_before, pipe.merge_template.shader_depth, ps_debug ? &*ps_debug : nullptr);
         stats_ = counted;
     }
