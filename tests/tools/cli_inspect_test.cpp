@@ -419,6 +419,59 @@ TEST(CliPixel, TransparentLookupsKeepTheirColourInTheHistory) {
     EXPECT_EQ(j["consistent"], true);
 }
 
+// The alpha gate's exclusions: the texel's colour decides a texkill or oDepth, so a transparent
+// lookup must still return it. The texel (r, g, b, a) = (15, 12, 9, 0) / 15, depth cleared to 1,
+// the quad at z 0.5, ZWRITE on. With texkill on colour - 0.5 (>= 0.1 in every channel): not
+// killed, so the depth 0.5 is written (a lookup gated to colour 0 would kill it). With oDepth =
+// red: 1 with the real colour (ZFUNC ALWAYS writes it), where a gated lookup would write 0.
+std::string transparent_slice_deciding(const std::string& middle) {
+    return "sm2cs 1\n"
+           "CreateDevice 4 4 A8R8G8B8 D24S8\n"
+           "CreateVolumeTexture vol 1 1 1 1 A4R4G4B4\n"
+           "LockBox vol 0 u16[ 4041 ]\n"  // 0x0FC9
+           "CreateVertexDeclaration decl { 0 0 FLOAT3 DEFAULT POSITION 0 }\n"
+           "CreateVertexShader vs asm<<END\nvs_2_0\ndcl_position v0\nmov oPos, v0\nmov oT0, c0\nEND\n"
+           "CreatePixelShader ps asm<<END\nps_2_0\ndef c1, 0.5, 0.5, 0.5, 0.5\ndcl t0.xyz\ndcl_volume s0\n"
+           "texld r0, t0, s0\n" + middle + "mul r0.w, r0.w, c0.x\nmov oC0, r0\nEND\n"
+           "SetVertexDeclaration decl\n"
+           "SetVertexShader vs\n"
+           "SetPixelShader ps\n"
+           "SetTexture 0 vol\n"
+           "SetSamplerState 0 MAGFILTER LINEAR\n"
+           "SetSamplerState 0 MINFILTER LINEAR\n"
+           "SetRenderState ALPHABLENDENABLE TRUE\n"
+           "SetRenderState SRCBLEND SRCALPHA\n"
+           "SetRenderState DESTBLEND INVSRCALPHA\n"
+           "SetRenderState ZFUNC ALWAYS\n"
+           "SetVertexShaderConstantF 0 f32[ 0.5 0.5 0.5 1 ]\n"
+           "SetPixelShaderConstantF 0 f32[ 0.5 0 0 0 ]\n"
+           "Clear { TARGET ZBUFFER } 0xFF000080 1 0\n"
+           "BeginScene\n"
+           "DrawPrimitiveUP TRIANGLESTRIP 2 12 f32[ -1 1 0.5   1 1 0.5   -1 -1 0.5   1 -1 0.5 ]\n"
+           "EndScene\n"
+           "Present\n";
+}
+
+TEST(CliPixel, TransparentLookupsKeepTheColourThatDecidesTexkillAndDepth) {
+    const double half = 128.0 / 255.0;
+    const std::string killed = tmp("transparent_slice_texkill.sm2cs");
+    write_file(killed, transparent_slice_deciding("sub r1.xyz, r0, c1\nmov r1.w, c1.w\ntexkill r1\n"));
+    const auto k = pixel_json(killed, 0, "1,2");
+    ASSERT_EQ(k["draws"].size(), 1u) << k.dump();
+    const auto& kf = k["draws"][0]["fragments"][0];
+    EXPECT_EQ(kf["texkill"], "pass");
+    EXPECT_NEAR(kf["after"]["depth"].get<double>(), 0.5, 1e-6);
+    expect_colour(kf["after"]["color"], 0, 0, half, 1, "texkill: colour unchanged");
+    EXPECT_EQ(k["consistent"], true);
+    const std::string depth = tmp("transparent_slice_odepth.sm2cs");
+    write_file(depth, transparent_slice_deciding("mov oDepth, r0.x\n"));
+    const auto d = pixel_json(depth, 0, "1,2");
+    ASSERT_EQ(d["draws"].size(), 1u) << d.dump();
+    const auto& df = d["draws"][0]["fragments"][0];
+    EXPECT_NEAR(df["after"]["depth"].get<double>(), 1.0, 1e-6);
+    EXPECT_EQ(d["consistent"], true);
+}
+
 TEST(CliPixel, ShaderSceneTraceStencilAndBlend) {
     // shader_scene.trace frame 0, pixel (128, 128): call 49 draws the textured quad; call 64 writes
     // stencil 1 with colour writes off (COLORWRITEENABLE 0, calls 54..58); call 73 blends a
