@@ -375,56 +375,13 @@ TEST(CliPixel, TextNamesEachTest) {
     EXPECT_NE(r.out.find("final: (1, 0.501961, 0, 1)"), std::string::npos) << r.out;
 }
 
-// A transparent volume slice (scene 13's shader): the texel (r, g, b, a) = (15, 9, 3, 0) / 15 of a
-// 1x1x1 A4R4G4B4 volume, its alpha times 0.5, blended SRCALPHA / INVSRCALPHA. The draw lets the
-// sampler leave the colour of lookups transparent on every lane (TextureSampler::set_alpha_gate):
-// nothing is written. The history still shows the colour the shader computed.
-const std::string kTransparentSlice =
-    "sm2cs 1\n"
-    "CreateDevice 4 4 A8R8G8B8\n"
-    "CreateVolumeTexture vol 1 1 1 1 A4R4G4B4\n"
-    "LockBox vol 0 u16[ 3987 ]\n"  // 0x0F93
-    "CreateVertexDeclaration decl { 0 0 FLOAT3 DEFAULT POSITION 0 }\n"
-    "CreateVertexShader vs asm<<END\nvs_2_0\ndcl_position v0\nmov oPos, v0\nmov oT0, c0\nEND\n"
-    "CreatePixelShader ps asm<<END\nps_2_0\ndcl t0.xyz\ndcl_volume s0\ntexld r0, t0, s0\n"
-    "mul r0.w, r0.w, c0.x\nmov oC0, r0\nEND\n"
-    "SetVertexDeclaration decl\n"
-    "SetVertexShader vs\n"
-    "SetPixelShader ps\n"
-    "SetTexture 0 vol\n"
-    "SetSamplerState 0 MAGFILTER LINEAR\n"
-    "SetSamplerState 0 MINFILTER LINEAR\n"
-    "SetRenderState ALPHABLENDENABLE TRUE\n"
-    "SetRenderState SRCBLEND SRCALPHA\n"
-    "SetRenderState DESTBLEND INVSRCALPHA\n"
-    "SetVertexShaderConstantF 0 f32[ 0.5 0.5 0.5 1 ]\n"
-    "SetPixelShaderConstantF 0 f32[ 0.5 0 0 0 ]\n"
-    "Clear TARGET 0xFF000080 1 0\n"
-    "BeginScene\n"
-    "DrawPrimitiveUP TRIANGLESTRIP 2 12 f32[ -1 1 0.5   1 1 0.5   -1 -1 0.5   1 -1 0.5 ]\n"
-    "EndScene\n"
-    "Present\n";
-
-TEST(CliPixel, TransparentLookupsKeepTheirColourInTheHistory) {
-    const std::string stream = tmp("transparent_slice.sm2cs");
-    write_file(stream, kTransparentSlice);
-    const double half = 128.0 / 255.0;
-    const auto j = pixel_json(stream, 0, "1,2");
-    ASSERT_EQ(j["draws"].size(), 1u) << j.dump();
-    const auto& fragment = j["draws"][0]["fragments"][0];
-    expect_colour(fragment["shader_color"], 1, 9.0 / 15.0, 3.0 / 15.0, 0, "shader");
-    expect_colour(fragment["before"]["color"], 0, 0, half, 1, "before (the clear)");
-    expect_colour(fragment["after"]["color"], 0, 0, half, 1, "after: unchanged");
-    expect_colour(j["final"], 0, 0, half, 1, "final");
-    EXPECT_EQ(j["consistent"], true);
-}
-
-// The alpha gate's exclusions: the texel's colour decides a texkill or oDepth, so a transparent
-// lookup must still return it. The texel (r, g, b, a) = (15, 12, 9, 0) / 15, depth cleared to 1,
-// the quad at z 0.5, ZWRITE on. With texkill on colour - 0.5 (>= 0.1 in every channel): not
-// killed, so the depth 0.5 is written (a lookup gated to colour 0 would kill it). With oDepth =
-// red: 1 with the real colour (ZFUNC ALWAYS writes it), where a gated lookup would write 0.
-std::string transparent_slice_deciding(const std::string& middle) {
+// A transparent volume slice (scene 13's shader): the texel (r, g, b, a) = (15, 12, 9, 0) / 15 of
+// a 1x1x1 A4R4G4B4 volume, its alpha times 0.5, blended SRCALPHA / INVSRCALPHA onto the clear
+// (0, 0, 128/255, 1); depth cleared to 1, the quad at z 0.5, ZFUNC ALWAYS, ZWRITE on. `middle`
+// runs between the lookup and the output (c1 = 0.5). Where nothing in it reads the colour, the
+// draw lets the sampler leave the colour of lookups transparent on every lane
+// (TextureSampler::set_alpha_gate): nothing is written.
+std::string transparent_slice(const std::string& middle) {
     return "sm2cs 1\n"
            "CreateDevice 4 4 A8R8G8B8 D24S8\n"
            "CreateVolumeTexture vol 1 1 1 1 A4R4G4B4\n"
@@ -452,10 +409,29 @@ std::string transparent_slice_deciding(const std::string& middle) {
            "Present\n";
 }
 
+// Gated: the history still shows the colour the shader computed.
+TEST(CliPixel, TransparentLookupsKeepTheirColourInTheHistory) {
+    const std::string stream = tmp("transparent_slice.sm2cs");
+    write_file(stream, transparent_slice(""));
+    const double half = 128.0 / 255.0;
+    const auto j = pixel_json(stream, 0, "1,2");
+    ASSERT_EQ(j["draws"].size(), 1u) << j.dump();
+    const auto& fragment = j["draws"][0]["fragments"][0];
+    expect_colour(fragment["shader_color"], 1, 12.0 / 15.0, 9.0 / 15.0, 0, "shader");
+    expect_colour(fragment["before"]["color"], 0, 0, half, 1, "before (the clear)");
+    expect_colour(fragment["after"]["color"], 0, 0, half, 1, "after: unchanged");
+    expect_colour(j["final"], 0, 0, half, 1, "final");
+    EXPECT_EQ(j["consistent"], true);
+}
+
+// The alpha gate's exclusions: the texel's colour decides a texkill or oDepth, so a transparent
+// lookup must still return it. With texkill on colour - 0.5 (>= 0.1 in every channel): not
+// killed, so the depth 0.5 is written (a lookup gated to colour 0 would kill it). With oDepth =
+// red: 1 with the real colour (ZFUNC ALWAYS writes it), where a gated lookup would write 0.
 TEST(CliPixel, TransparentLookupsKeepTheColourThatDecidesTexkillAndDepth) {
     const double half = 128.0 / 255.0;
     const std::string killed = tmp("transparent_slice_texkill.sm2cs");
-    write_file(killed, transparent_slice_deciding("sub r1.xyz, r0, c1\nmov r1.w, c1.w\ntexkill r1\n"));
+    write_file(killed, transparent_slice("sub r1.xyz, r0, c1\nmov r1.w, c1.w\ntexkill r1\n"));
     const auto k = pixel_json(killed, 0, "1,2");
     ASSERT_EQ(k["draws"].size(), 1u) << k.dump();
     const auto& kf = k["draws"][0]["fragments"][0];
@@ -464,7 +440,7 @@ TEST(CliPixel, TransparentLookupsKeepTheColourThatDecidesTexkillAndDepth) {
     expect_colour(kf["after"]["color"], 0, 0, half, 1, "texkill: colour unchanged");
     EXPECT_EQ(k["consistent"], true);
     const std::string depth = tmp("transparent_slice_odepth.sm2cs");
-    write_file(depth, transparent_slice_deciding("mov oDepth, r0.x\n"));
+    write_file(depth, transparent_slice("mov oDepth, r0.x\n"));
     const auto d = pixel_json(depth, 0, "1,2");
     ASSERT_EQ(d["draws"].size(), 1u) << d.dump();
     const auto& df = d["draws"][0]["fragments"][0];
