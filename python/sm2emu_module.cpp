@@ -425,6 +425,7 @@ py::dict statistics_dict(const runtime::DrawStatistics& s) {
     d["pixels_rasterized"] = s.pixels_rasterized;
     d["pixels_killed"] = s.pixels_killed;
     d["pixels_written"] = s.pixels_written;
+    d["pixels_outside_texture"] = s.pixels_outside_texture;
     d["pipelines_built"] = s.pipelines_built;
     d["pipeline_seconds"] = s.pipeline_seconds;
     d["vertex_seconds"] = s.vertex_seconds;

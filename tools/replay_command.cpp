@@ -220,6 +220,7 @@ void print_draw_table(const runtime::ReplayResult& result) {
 nlohmann::ordered_json draw_json(const runtime::DrawStatistics& s) {
     return {{"pixels_rasterized", s.pixels_rasterized}, {"pixels_shaded", s.pixels_shaded},
             {"pixels_killed", s.pixels_killed},         {"pixels_written", s.pixels_written},
+            {"pixels_outside_texture", s.pixels_outside_texture},
             {"vertices_shaded", s.vertices_shaded},     {"primitives", s.primitives}};
 }
 

@@ -54,7 +54,7 @@ bool from_texture_alpha(std::span<const Step> steps, unsigned slot, unsigned com
 
 }  // namespace
 
-std::optional<unsigned> alpha_source_sampler(const Executable& pixel_shader) {
+std::optional<size_t> alpha_source_texld(const Executable& pixel_shader) {
     const std::span<const Step> steps = pixel_shader.steps();
     size_t texld = 0;
     unsigned budget = 256;
@@ -64,7 +64,13 @@ std::optional<unsigned> alpha_source_sampler(const Executable& pixel_shader) {
         return step.opcode == Opcode::Tex && step.sampler == sampler;
     });
     if (reads != 1) return std::nullopt;
-    return sampler;
+    return texld;
+}
+
+std::optional<unsigned> alpha_source_sampler(const Executable& pixel_shader) {
+    const std::optional<size_t> texld = alpha_source_texld(pixel_shader);
+    if (!texld) return std::nullopt;
+    return pixel_shader.steps()[*texld].sampler;
 }
 
 }  // namespace sm2::emu

@@ -181,6 +181,13 @@ const emu::jit::CompiledShader* compiled_for(Device::ShaderObject::Lowered& entr
 }
 
 // Everything the pixel part of a draw reads: built once, shared read-only by the tile threads.
+// Batches whose alpha-deciding lookup lies outside its texture (outside_cull()): the t# the
+// texld reads (x, y, z: u, v, w) and the sampler's box.
+struct OutsideCull {
+    unsigned texcoord = 0;
+    TextureSampler::BorderBox box;
+};
+
 struct PixelPipeline {
     const emu::Executable* ps = nullptr;  // the application's shader or the fixed-function program
     const emu::jit::CompiledShader* ps_compiled = nullptr;  // ps as native code (Engine::Jit)
@@ -196,6 +203,7 @@ struct PixelPipeline {
     bool interpolated_depth = true;
     bool reference_paths = false;  // DeviceOptions::reference_paths: the portable interpolation
     const TextureSampler* sampler = nullptr;
+    std::optional<OutsideCull> outside_cull;  // batches not shaded (outside_cull())
 };
 
 // One tile owner's working set.
@@ -205,6 +213,7 @@ struct TileWorker {
     std::array<Quad, kTileQuads> tile_quads;  // one primitive's quads in one tile (process_tile)
     TextureSampler sampler;
     uint64_t pixels_shaded = 0, pixels_rasterized = 0, pixels_killed = 0, pixels_written = 0;
+    uint64_t pixels_outside_texture = 0;
 };
 
 // What draws see of their own work: nothing (every draw), or the watched pixel's stages
@@ -229,21 +238,51 @@ constexpr uint64_t lanes_in(emu::LaneMask mask) {
 }
 static_assert(lanes_in(0) == 0 && lanes_in(0xFFFF) == 16 && lanes_in(0x8001) == 2 && lanes_in(0x7FFE) == 14);
 
-// The sampler stage whose lookups may leave their colour unset where their alpha is transparent
-// on every lane (TextureSampler::set_alpha_gate): the stage of the one texld whose alpha the
-// shader's oC0.w follows (emu::alpha_source_sampler), in a draw that writes render target 0
+// The texld whose lookups may leave their colour unset where their alpha is transparent on
+// every lane (TextureSampler::set_alpha_gate, on its sampler stage): the one texld whose alpha
+// the shader's oC0.w follows (emu::alpha_source_texld), in a draw that writes render target 0
 // alone and skips its transparent batches (TargetPlan::transparent_skips). Such a batch writes
 // nothing, so no colour of it is read. Not with texkill or oDepth, whose lanes and depth the
-// colour could decide.
-std::optional<unsigned> alpha_gate_stage(const emu::Executable& ps, const MergePlan& plan, const MergeInput& outputs,
-                                         bool kills) {
+// colour could decide. Its index in ps.steps().
+std::optional<size_t> alpha_gate_texld(const emu::Executable& ps, const MergePlan& plan, const MergeInput& outputs,
+                                       bool kills) {
     if (kills || outputs.shader_depth || outputs.color_outputs != 1u || !plan.targets[0].transparent_skips)
         return std::nullopt;
     for (unsigned t = 1; t < kMaxRenderTargets; ++t)
         if (plan.targets[t].path != TargetPath::Skip) return std::nullopt;
-    const std::optional<unsigned> stage = emu::alpha_source_sampler(ps);
-    if (!stage || *stage >= TextureSampler::kStages) return std::nullopt;
-    return stage;
+    const std::optional<size_t> texld = emu::alpha_source_texld(ps);
+    if (!texld || ps.steps()[*texld].sampler >= TextureSampler::kStages) return std::nullopt;
+    return texld;
+}
+
+// The alpha gate's texld (`texld`) reads an interpolated t# as it is (a plain texld, no swizzle
+// or negate, fp32) and
+// its stage has a TextureSampler::transparent_border(): a batch whose every live lane reads that
+// t# outside the border box on one BORDER axis samples alpha +0 on all of them, and so writes
+// nothing (the slices of a volume drawn beyond it). Nor does anything else of it change where
+// no alpha test drops lanes and the depth and stencil tests ran before the shader or are off:
+// such a batch is not shaded (shade_quads). Pixel history shades every batch.
+std::optional<OutsideCull> outside_cull(const emu::Executable& ps, size_t texld, const TextureSampler& sampler,
+                                        const OutputMergerState& merger, bool early_depth_stencil) {
+    const emu::Step& step = ps.steps()[texld];
+    const emu::StepSource& coordinate = step.sources[0];
+    if (ps.precision() != emu::Precision::Fp32 || step.control != isa::kTexLdPlain ||
+        coordinate.kind != emu::OperandKind::Lanes || coordinate.index < slot::kTexCoordFirst ||
+        coordinate.index >= slot::kTexCoordFirst + slot::kTexCoordCount || coordinate.swizzle != 0xE4 || coordinate.negate)
+        return std::nullopt;
+    // An alpha test decides lanes, and so the depth written, after the shader. Without one the
+    // gate's draw (no texkill, no oDepth) tests depth and stencil before it (the second test
+    // guards that).
+    if (merger.alpha_test || (merger.depth_stencil.active() && !early_depth_stencil)) return std::nullopt;
+    const std::optional<TextureSampler::BorderBox> box = sampler.transparent_border(step.sampler);
+    if (!box) return std::nullopt;
+    return OutsideCull{coordinate.index - slot::kTexCoordFirst, *box};
+}
+
+// Whether every lane of `live` reads its OutsideCull coordinate outside the border box.
+bool lookups_outside(const OutsideCull& cull, const emu::Batch& batch, emu::LaneMask live) {
+    const emu::Batch::Register& t = batch.texcoord(cull.texcoord);
+    return (live & ~TextureSampler::outside_border(cull.box, {t[0].data(), t[1].data(), t[2].data()})) == 0;
 }
 
 template <class Observer>
@@ -262,6 +301,17 @@ void shade_quads(const PixelPipeline& pipe, const PrimitiveSetup& prim, std::spa
         input.depth_stencil_done = true;
         observer.early_tested(live);
         if (!live) return;
+    }
+    if constexpr (std::is_same_v<Observer, NoObserver>) {
+        if (pipe.outside_cull && lookups_outside(*pipe.outside_cull, w.batch, live)) {
+            // What shading and merge() would count: every live lane shaded, none killed, the
+            // lanes of the batch's quads past the tests (written: the target skips them).
+            w.pixels_shaded += lanes_in(live);
+            if (w.lanes.quad_count * 4 < emu::kBatchLanes) live &= (emu::LaneMask{1} << (w.lanes.quad_count * 4)) - 1;
+            w.pixels_written += lanes_in(live);
+            w.pixels_outside_texture += lanes_in(live);
+            return;
+        }
     }
     w.batch.killed = 0;
     // A batch whose lanes a texkill has all killed writes nothing: the shader may stop there.
@@ -535,6 +585,7 @@ void run_tiles(const PixelPipeline& pipe, std::span<const PrimitiveSetup> setups
         stats.pixels_rasterized += w.pixels_rasterized;
         stats.pixels_killed += w.pixels_killed;
         stats.pixels_written += w.pixels_written;
+        stats.pixels_outside_texture += w.pixels_outside_texture;
     }
 }
 
@@ -861,8 +912,10 @@ CallResult Device::run_draw(PrimitiveType type, uint32_t primitive_count, std::v
     // Pixel history records the shader's outputs as they are: its pass samples without the gate.
     std::optional<TextureSampler> history_sampler;
     if (pixel_watch_) history_sampler = sampler;
-    if (const std::optional<unsigned> stage = alpha_gate_stage(ps, pipe.merge_plan, pipe.merge_template, kills))
-        sampler.set_alpha_gate(*stage, true);
+    if (const std::optional<size_t> texld = alpha_gate_texld(ps, pipe.merge_plan, pipe.merge_template, kills)) {
+        sampler.set_alpha_gate(ps.steps()[*texld].sampler, true);
+        pipe.outside_cull = outside_cull(ps, *texld, sampler, merger, pipe.early_depth_stencil);
+    }
     if (!pool_) pool_ = std::make_unique<WorkerPool>(options_.threads);
     // Pixel history (sm2 pixel): one test per draw; the tiles run as they always do.
     std::optional<PixelBytes> watched_before;

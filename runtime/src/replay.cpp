@@ -858,6 +858,7 @@ DrawStatistics difference(const DrawStatistics& after, const DrawStatistics& bef
     d.pixels_rasterized = after.pixels_rasterized - before.pixels_rasterized;
     d.pixels_killed = after.pixels_killed - before.pixels_killed;
     d.pixels_written = after.pixels_written - before.pixels_written;
+    d.pixels_outside_texture = after.pixels_outside_texture - before.pixels_outside_texture;
     d.pipelines_built = after.pipelines_built - before.pipelines_built;
     d.pipeline_seconds = after.pipeline_seconds - before.pipeline_seconds;
     d.vertex_seconds = after.vertex_seconds - before.vertex_seconds;

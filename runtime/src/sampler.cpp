@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 #include <immintrin.h>
@@ -1014,6 +1015,47 @@ void TextureSampler::prepare() {
 }
 
 bool TextureSampler::block_path_applies(unsigned stage) const { return block_levels_for(stage) != nullptr; }
+
+std::optional<TextureSampler::BorderBox> TextureSampler::transparent_border(unsigned stage) const {
+    const Stage& s = stages_.at(stage);
+    const Texture* texture = s.texture;
+    if (texture == nullptr || texture->type() == TextureType::Cube || (s.state.border_color >> 24) != 0) return std::nullopt;
+    const auto point_or_linear = [](TextureFilter f) { return f == TextureFilter::Point || f == TextureFilter::Linear; };
+    const bool mip_ok = s.state.mip_filter == TextureFilter::None || point_or_linear(s.state.mip_filter);
+    if (!point_or_linear(s.state.min_filter) || !point_or_linear(s.state.mag_filter) || !mip_ok) return std::nullopt;
+    const TextureAddress modes[3] = {s.state.address_u, s.state.address_v, s.state.address_w};
+    const uint32_t last = texture->levels() - 1;
+    const uint32_t smallest[3] = {texture->level_width(last), texture->level_height(last), texture->level_depth(last)};
+    BorderBox box;
+    const unsigned axes = texture->type() == TextureType::Volume ? 3 : 2;
+    for (unsigned a = 0; a < axes; ++a) {
+        if (modes[a] != TextureAddress::Border) continue;
+        // On a level of n >= m texels (m: the smallest level's), u < -1/m gives u * n < -1, so
+        // LINEAR's upper tap floor(u * n - 0.5) + 1 is below 0 (POINT's floor(u * n) too), and
+        // u >= 1 + 1/m gives u * n - 0.5 >= n + 0.5, both taps at n or above: half a texel to
+        // spare for the float rounding of u * n. Rounded outward to floats.
+        const double margin = 1.0 / smallest[a];
+        box.axes |= 1u << a;
+        box.low[a] = std::nextafter(static_cast<float>(-margin), -std::numeric_limits<float>::infinity());
+        box.high[a] = std::nextafter(static_cast<float>(1.0 + margin), std::numeric_limits<float>::infinity());
+    }
+    if (box.axes == 0) return std::nullopt;
+    return box;
+}
+
+emu::LaneMask TextureSampler::outside_border(const BorderBox& box, const std::array<const float*, 3>& coordinates) {
+    if (cpu_has_avx512()) return avx512::block_outside_border(box, coordinates);
+    if (cpu_has_avx2()) return avx2::block_outside_border(box, coordinates);
+    emu::LaneMask outside = 0;
+    for (unsigned a = 0; a < 3; ++a) {
+        if (!(box.axes >> a & 1u)) continue;
+        for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+            const float v = coordinates[a][l];
+            if (v < box.low[a] || v >= box.high[a]) outside |= emu::LaneMask{1} << l;
+        }
+    }
+    return outside;
+}
 
 void TextureSampler::sample(const emu::TextureRequest& request, std::array<emu::FloatLanes, 4>& texels) {
     const unsigned quads = std::min(request.quad_count, emu::kBatchQuads);

@@ -36,6 +36,21 @@ TEST(AlphaSource, FollowsMovAndMulBackToTheTexld) {
               1u);
 }
 
+// alpha_source_texld(): the step of that texld, whose coordinate source a draw reads.
+TEST(AlphaSource, NamesTheStepOfTheTexld) {
+    const emu::Executable exe = lower_or_fail(assemble_or_fail(
+        "ps_2_0\ndcl t0\ndcl t1\ndcl_2d s0\ndcl_2d s1\ntexld r0, t0, s0\ntexld r1, t1, s1\n"
+        "mul r0.xyz, r0, r1\nmov r0.w, r1.w\nmov oC0, r0\n"));
+    const std::optional<size_t> texld = emu::alpha_source_texld(exe);
+    ASSERT_TRUE(texld);
+    const emu::Step& step = exe.steps()[*texld];
+    EXPECT_EQ(step.opcode, isa::Opcode::Tex);
+    EXPECT_EQ(step.sampler, 1u);
+    EXPECT_EQ(step.sources[0].kind, emu::OperandKind::Lanes);
+    EXPECT_EQ(step.sources[0].index, emu::slot::kTexCoordFirst + 1);  // t1
+    EXPECT_FALSE(emu::alpha_source_texld(lower_or_fail(assemble_or_fail("ps_2_0\nmov oC0, c0\n"))));
+}
+
 TEST(AlphaSource, NoneWhereATransparentTexelNeedNotGiveATransparentAlpha) {
     // Added to, or through mad: 0 + c is not 0.
     EXPECT_EQ(alpha_source_of("dcl t0\ndcl_2d s0\ntexld r0, t0, s0\nadd r0.w, r0.w, c0.x\nmov oC0, r0\n"), std::nullopt);

@@ -92,6 +92,15 @@ TEST_P(Scene, ReplaysCleanlyAndIdenticallyOnAnyThreadCountAndPath) {
         ASSERT_NE(it, three.images.end()) << name;
         EXPECT_TRUE(surface.bytes() == it->second.bytes()) << name << " differs between 1 thread (reference paths, interpreter) and 3 threads (block paths, JIT)";
     }
+    // The same counts: batches the fast paths skip unshaded (pixels_outside_texture) count as the
+    // reference's shaded ones.
+    const DrawStatistics& a = one.result.statistics;
+    const DrawStatistics& b = three.result.statistics;
+    EXPECT_EQ(a.pixels_rasterized, b.pixels_rasterized);
+    EXPECT_EQ(a.pixels_shaded, b.pixels_shaded);
+    EXPECT_EQ(a.pixels_killed, b.pixels_killed);
+    EXPECT_EQ(a.pixels_written, b.pixels_written);
+    EXPECT_EQ(a.pixels_outside_texture, 0u);
 }
 
 // Every image against its golden: 8-bit values equal within 1 step (libm may round a last bit

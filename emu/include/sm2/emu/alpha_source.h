@@ -1,6 +1,7 @@
 // Which texture lookup decides whether a pixel shader's colour is transparent.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 
 #include "sm2/emu/executable.h"
@@ -15,5 +16,8 @@ namespace sm2::emu {
 // A draw that skips transparent batches lets that stage's lookups leave red, green and blue
 // unset where the alpha is transparent on every lane (draw.cpp, TextureSampler::set_alpha_gate).
 [[nodiscard]] std::optional<unsigned> alpha_source_sampler(const Executable& pixel_shader);
+// The index in pixel_shader.steps() of that texld (its sampler is alpha_source_sampler()'s): a
+// draw reads its coordinate source to find batches whose lookups lie outside the texture.
+[[nodiscard]] std::optional<size_t> alpha_source_texld(const Executable& pixel_shader);
 
 }  // namespace sm2::emu

@@ -127,8 +127,13 @@ struct DrawStatistics {
     uint64_t pipelines_built = 0;
     // Pixels covered by a primitive (inside viewport and scissor), discarded by texkill, and
     // that wrote a colour (past texkill, alpha, depth and stencil tests). pixels_shaded counts
-    // the ones the pixel shader ran for (after an early depth/stencil test, when one runs).
+    // the ones the pixel shader ran for (after an early depth/stencil test, when one runs), or
+    // whose results the draw knew without running it (pixels_outside_texture).
     uint64_t pixels_rasterized = 0, pixels_killed = 0, pixels_written = 0;
+    // Of pixels_shaded: pixels of batches whose shader did not run because their alpha lookups
+    // lie outside the texture, BORDER with a transparent BORDERCOLOR, in a draw that writes
+    // nothing transparent (draw.cpp's outside_cull): their results are known without it.
+    uint64_t pixels_outside_texture = 0;
     // Wall time per stage, summed over draws (seconds): building pipelines (lowering), vertex
     // fetch and shading, primitive assembly + clipping + setup + binning, and the tile work
     // (rasterization, interpolation, pixel shading, output merger; all threads together).

@@ -105,6 +105,21 @@ public:
     // do, which skips three quarters of their decoding and sums; every other lookup ignores it.
     void set_alpha_gate(unsigned stage, bool gated) { alpha_gates_.at(stage) = gated; }
     [[nodiscard]] bool alpha_gate(unsigned stage) const { return alpha_gates_.at(stage); }
+    // Where the stage's lookups read BORDERCOLOR alone and so return alpha +0: per axis (u, v,
+    // w) of a 2D or volume texture addressed BORDER, the coordinates from `low` up, below
+    // `high`, outside which every POINT or LINEAR tap of every level lies outside the texture
+    // (a texel of margin on the smallest level). A lane outside on one such axis sums
+    // BORDERCOLOR's alpha 0 times finite weights: +0.
+    // nullopt where no axis is BORDER, BORDERCOLOR's alpha is not 0, no texture is bound, or
+    // the filter is not POINT or LINEAR (anisotropic probes spread over the pixel's footprint).
+    struct BorderBox {
+        unsigned axes = 0;                   // bit a: axis a is addressed BORDER
+        std::array<float, 3> low{}, high{};  // per axis in `axes`
+    };
+    [[nodiscard]] std::optional<BorderBox> transparent_border(unsigned stage) const;
+    // The lanes of a batch whose coordinates (u, v, w: 16 lanes each) lie outside `box` on one
+    // of its axes: the lanes whose lookups return alpha +0.
+    [[nodiscard]] static emu::LaneMask outside_border(const BorderBox& box, const std::array<const float*, 3>& coordinates);
     // Whether sample() takes the 16-lane path for this stage's texture and state.
     [[nodiscard]] bool block_path_applies(unsigned stage) const;
     // Decides the block path and builds its level tables for every stage now, once (a draw calls
