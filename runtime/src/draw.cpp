@@ -280,9 +280,10 @@ std::optional<OutsideCull> outside_cull(const emu::Executable& ps, size_t texld,
 }
 
 // Whether every lane of `live` reads its OutsideCull coordinate outside the border box.
-bool lookups_outside(const OutsideCull& cull, const emu::Batch& batch, emu::LaneMask live) {
+bool lookups_outside(const OutsideCull& cull, const TextureSampler& sampler, const emu::Batch& batch,
+                     emu::LaneMask live) {
     const emu::Batch::Register& t = batch.texcoord(cull.texcoord);
-    return (live & ~TextureSampler::outside_border(cull.box, {t[0].data(), t[1].data(), t[2].data()})) == 0;
+    return (live & ~sampler.outside_border(cull.box, {t[0].data(), t[1].data(), t[2].data()})) == 0;
 }
 
 template <class Observer>
@@ -303,7 +304,7 @@ void shade_quads(const PixelPipeline& pipe, const PrimitiveSetup& prim, std::spa
         if (!live) return;
     }
     if constexpr (std::is_same_v<Observer, NoObserver>) {
-        if (pipe.outside_cull && lookups_outside(*pipe.outside_cull, w.batch, live)) {
+        if (pipe.outside_cull && lookups_outside(*pipe.outside_cull, w.sampler, w.batch, live)) {
             // What shading and merge() would count: every live lane shaded, none killed, the
             // lanes of the batch's quads past the tests (written: the target skips them).
             w.pixels_shaded += lanes_in(live);

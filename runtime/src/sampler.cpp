@@ -1043,9 +1043,9 @@ std::optional<TextureSampler::BorderBox> TextureSampler::transparent_border(unsi
     return box;
 }
 
-emu::LaneMask TextureSampler::outside_border(const BorderBox& box, const std::array<const float*, 3>& coordinates) {
-    if (cpu_has_avx512()) return avx512::block_outside_border(box, coordinates);
-    if (cpu_has_avx2()) return avx2::block_outside_border(box, coordinates);
+emu::LaneMask TextureSampler::outside_border(const BorderBox& box, const std::array<const float*, 3>& coordinates) const {
+    if (block_enabled_ && cpu_has_avx512() && !block_avx2_) return avx512::block_outside_border(box, coordinates);
+    if (block_enabled_ && cpu_has_avx2()) return avx2::block_outside_border(box, coordinates);
     emu::LaneMask outside = 0;
     for (unsigned a = 0; a < 3; ++a) {
         if (!(box.axes >> a & 1u)) continue;

@@ -157,9 +157,15 @@ TEST(SamplerBorderBox, LookupsOutsideTheBoxReadAlphaZeroOnEveryPath) {
             for (unsigned a = 0; a < 3; ++a)
                 if ((box->axes >> a & 1u) && (coordinates[a][l] < box->low[a] || coordinates[a][l] >= box->high[a]))
                     expected |= emu::LaneMask{1} << l;
-        EXPECT_EQ(TextureSampler::outside_border(*box, {coordinates[0].data(), coordinates[1].data(), coordinates[2].data()}),
-                  expected)
-            << "round " << round;
+        // Every instance: the CPU's (AVX-512 here), AVX2 forced, and lane by lane.
+        for (unsigned instance = 0; instance < 3; ++instance) {
+            TextureSampler sampler;
+            sampler.set_block_avx2(instance == 1);
+            sampler.set_block_path(instance != 2);
+            EXPECT_EQ(sampler.outside_border(*box, {coordinates[0].data(), coordinates[1].data(), coordinates[2].data()}),
+                      expected)
+                << "round " << round << " instance " << instance;
+        }
         for (const bool block : {true, false}) {
             TextureSampler sampler;
             sampler.set_texture(0, &texture);
