@@ -180,7 +180,6 @@ const emu::jit::CompiledShader* compiled_for(Device::ShaderObject::Lowered& entr
     return entry.compiled.get();
 }
 
-// Everything the pixel part of a draw reads: built once, shared read-only by the tile threads.
 // Batches whose alpha-deciding lookup lies outside its texture (outside_cull()): the t# the
 // texld reads (x, y, z: u, v, w) and the sampler's box.
 struct OutsideCull {
@@ -188,6 +187,7 @@ struct OutsideCull {
     TextureSampler::BorderBox box;
 };
 
+// Everything the pixel part of a draw reads: built once, shared read-only by the tile threads.
 struct PixelPipeline {
     const emu::Executable* ps = nullptr;  // the application's shader or the fixed-function program
     const emu::jit::CompiledShader* ps_compiled = nullptr;  // ps as native code (Engine::Jit)
@@ -256,12 +256,11 @@ std::optional<size_t> alpha_gate_texld(const emu::Executable& ps, const MergePla
 }
 
 // The alpha gate's texld (`texld`) reads an interpolated t# as it is (a plain texld, no swizzle
-// or negate, fp32) and
-// its stage has a TextureSampler::transparent_border(): a batch whose every live lane reads that
-// t# outside the border box on one BORDER axis samples alpha +0 on all of them, and so writes
-// nothing (the slices of a volume drawn beyond it). Nor does anything else of it change where
-// no alpha test drops lanes and the depth and stencil tests ran before the shader or are off:
-// such a batch is not shaded (shade_quads). Pixel history shades every batch.
+// or negate, fp32) and its stage has a TextureSampler::transparent_border(): a batch whose every
+// live lane reads that t# outside the border box on one BORDER axis samples alpha +0 on all of
+// them, and so writes nothing (the slices of a volume drawn beyond it). Nor does anything else
+// of it change where no alpha test drops lanes and the depth and stencil tests ran before the
+// shader or are off: such a batch is not shaded (shade_quads). Pixel history shades every batch.
 std::optional<OutsideCull> outside_cull(const emu::Executable& ps, size_t texld, const TextureSampler& sampler,
                                         const OutputMergerState& merger, bool early_depth_stencil) {
     const emu::Step& step = ps.steps()[texld];

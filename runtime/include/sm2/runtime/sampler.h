@@ -118,8 +118,9 @@ public:
     };
     [[nodiscard]] std::optional<BorderBox> transparent_border(unsigned stage) const;
     // The lanes of a batch whose coordinates (u, v, w: 16 lanes each) lie outside `box` on one
-    // of its axes: the lanes whose lookups return alpha +0. In the 16-lane path's instance (AVX-512,
-    // or AVX2 where set_block_avx2() forces it), lane by lane where the block path is off.
+    // of its axes: the lanes whose lookups return alpha +0. Computed by the CPU's 16-lane
+    // instance (AVX2 where set_block_avx2() forces it), or lane by lane where the block path is
+    // off or the CPU has neither AVX-512 nor AVX2.
     [[nodiscard]] emu::LaneMask outside_border(const BorderBox& box, const std::array<const float*, 3>& coordinates) const;
     // Whether sample() takes the 16-lane path for this stage's texture and state.
     [[nodiscard]] bool block_path_applies(unsigned stage) const;
