@@ -304,12 +304,13 @@ void shade_quads(const PixelPipeline& pipe, const PrimitiveSetup& prim, std::spa
     }
     if constexpr (std::is_same_v<Observer, NoObserver>) {
         if (pipe.outside_cull && lookups_outside(*pipe.outside_cull, w.sampler, w.batch, live)) {
-            // What shading and merge() would count: every live lane shaded, none killed, the
-            // lanes of the batch's quads past the tests (written: the target skips them).
-            w.pixels_shaded += lanes_in(live);
-            if (w.lanes.quad_count * 4 < emu::kBatchLanes) live &= (emu::LaneMask{1} << (w.lanes.quad_count * 4)) - 1;
-            w.pixels_written += lanes_in(live);
-            w.pixels_outside_texture += lanes_in(live);
+            // What shading and merge() would count: every live lane shaded, none killed, and all
+            // past the tests (written: the target skips them). `live` lies within the batch's
+            // quads (the coverage interpolate() set), so merge()'s mask to them changes nothing.
+            const uint64_t lanes = lanes_in(live);
+            w.pixels_shaded += lanes;
+            w.pixels_written += lanes;
+            w.pixels_outside_texture += lanes;
             return;
         }
     }

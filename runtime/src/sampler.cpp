@@ -1027,8 +1027,8 @@ std::optional<TextureSampler::BorderBox> TextureSampler::transparent_border(unsi
     const uint32_t last = texture->levels() - 1;
     const uint32_t smallest[3] = {texture->level_width(last), texture->level_height(last), texture->level_depth(last)};
     BorderBox box;
-    const unsigned axes = texture->type() == TextureType::Volume ? 3 : 2;
-    for (unsigned a = 0; a < axes; ++a) {
+    const unsigned dimensions = texture->type() == TextureType::Volume ? 3 : 2;
+    for (unsigned a = 0; a < dimensions; ++a) {
         if (modes[a] != TextureAddress::Border) continue;
         // On a level of n >= m texels (m: the smallest level's), u < -1/m gives u * n < -1, so
         // LINEAR's upper tap floor(u * n - 0.5) + 1 is below 0 (POINT's floor(u * n) too), and
