@@ -628,7 +628,8 @@ void add_replay_commands(CLI::App& app, int& status) {
     replay->add_option("--stats", r->stats,
                        "Per draw: call number, line, frame, pixels rasterized, shaded, killed (texkill), written, "
                        "vertices, primitives and time; 'table' after the frames, or 'json' (stdout then holds the "
-                       "JSON alone)")
+                       "JSON alone; it also counts pixels_outside_texture, the shaded pixels whose batch was skipped "
+                       "because its alpha lookups lie outside a BORDER texture: docs/inspection.md)")
         ->check(CLI::IsMember({"table", "json"}));
     replay->add_option("--snapshot", r->snapshot,
                        "After each call of this apitrace call set (10,20-30 / 0-100/5 / */draw / frame / @FILE), "
