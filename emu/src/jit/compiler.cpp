@@ -10,10 +10,10 @@
 // and folds the constants (the tests of masks, swizzles, negates, roundings disappear), keeps the
 // scratch vectors and the temporaries (a function-local array, never stored to the batch) in
 // registers and forwards values from step to step; the code generator
-// targets the host CPU (AVX-512 where there is one). The exact pow and lit are the exception:
-// their series are called out of line, one copy per process compiled from the same bitcode
-// (add_shared_kernel), because inlined at every use they made up most of a lighting shader's
-// code and compile time.
+// targets the host CPU (AVX-512 where there is one). The exact exp, log, pow and lit are the
+// exception: their series are called out of line, because inlined at every use they made up
+// most of a lighting shader's code and compile time. Those calls go to the kernels compiled
+// ahead of time for the host's x86-64 level (native_kernels.h: the same source and flags).
 //
 // Bit-identity with the interpreter (compiled by the C++ compiler of the build):
 //  - the same source for every rule, and IEEE semantics on both sides: no contraction (the
@@ -40,6 +40,7 @@
 #include <memory>
 #include <mutex>
 #include <set>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -74,6 +75,7 @@
 #include <llvm/Support/raw_ostream.h>
 #include <llvm/Target/TargetMachine.h>
 
+#include "jit/native_kernels.h"
 #include "sm2/emu/jit.h"
 #include "step_kernels.h"
 
@@ -235,10 +237,10 @@ const std::string& module_identity() {
     return identity;
 }
 
-// The JIT cache's key of `what` (a group's IR, an out-of-line kernel's name): the SHA-1, as hex,
-// of it and of everything else its machine code is made from: this module (the emitter, the
-// passes, the code generator's options, the kernels), LLVM's version, the host CPU and its
-// features. Empty where the module cannot be identified (then no cache).
+// The JIT cache's key of `what` (a group's IR): the SHA-1, as hex, of it and of everything else
+// its machine code is made from: this module (the emitter, the passes, the code generator's
+// options, the kernels), LLVM's version, the host CPU and its features. Empty where the module
+// cannot be identified (then no cache).
 std::string cache_key(const std::string& cpu, const std::string& features, llvm::StringRef what) {
     if (module_identity().empty()) return {};
     const std::string text = "sm2-jit-cache 1\n" + module_identity() + "\n" + LLVM_VERSION_STRING + "\n" + cpu + "\n" +
@@ -267,6 +269,36 @@ private:
     llvm::orc::JITTargetMachineBuilder builder_;
 };
 
+// The name of a kernel's out-of-line copy (Emitter::call_shared).
+constexpr const char* kSharedSuffix = "_shared";
+
+// The native kernels (native_kernels.h) of the highest x86-64 level whose features the host has
+// (`features`: LLVM's "+name,-name,..." for the host CPU).
+std::span<const NativeKernel> native_kernels(const std::string& features) {
+    std::set<std::string, std::less<>> enabled;
+    for (llvm::StringRef feature : llvm::split(features, ','))
+        if (feature.consume_front("+")) enabled.insert(feature.str());
+    const auto has = [&](std::initializer_list<const char*> wanted) {
+        return std::all_of(wanted.begin(), wanted.end(), [&](const char* name) { return enabled.count(name) != 0; });
+    };
+    const bool v3 = has({"cx16", "sahf", "popcnt", "sse3", "sse4.1", "sse4.2", "ssse3", "avx", "avx2", "bmi", "bmi2",
+                         "f16c", "fma", "lzcnt", "movbe", "xsave"});
+    if (v3 && has({"avx512f", "avx512bw", "avx512cd", "avx512dq", "avx512vl"}))
+        return {sm2_kernels_x86_64_v4::native_kernels, sm2_kernels_x86_64_v4::native_kernel_count};
+    if (v3) return {sm2_kernels_x86_64_v3::native_kernels, sm2_kernels_x86_64_v3::native_kernel_count};
+    return {sm2_kernels_x86_64::native_kernels, sm2_kernels_x86_64::native_kernel_count};
+}
+
+// Defines `<kernel>_shared`, what the routines call out of line, as the native kernels' addresses.
+llvm::Error define_native_kernels(llvm::orc::LLJIT& jit, const std::string& features) {
+    llvm::orc::SymbolMap symbols;
+    for (const NativeKernel& kernel : native_kernels(features))
+        symbols[jit.mangleAndIntern(std::string(kernel.name) + kSharedSuffix)] =
+            llvm::JITEvaluatedSymbol(llvm::pointerToJITTargetAddress(kernel.function),
+                                     llvm::JITSymbolFlags::Exported | llvm::JITSymbolFlags::Callable);
+    return jit.getMainJITDylib().define(llvm::orc::absoluteSymbols(std::move(symbols)));
+}
+
 // One LLJIT per process, created on first use.
 struct Host {
     std::unique_ptr<llvm::orc::LLJIT> jit;
@@ -274,8 +306,6 @@ struct Host {
     std::string cpu;
     std::string features;
     std::string error;  // why there is no jit
-    std::mutex shared_mutex;
-    std::set<std::string> shared_kernels;  // out-of-line kernels added to the main JITDylib
     // The JIT cache's groups of this process by key: their names are the key's, so a group
     // compiled again while its code lives shares that code (its symbols are defined once).
     struct CachedGroup {
@@ -327,6 +357,10 @@ Host* create_host() {
         return host;
     }
     (*jit)->getMainJITDylib().addGenerator(std::move(*process));
+    if (llvm::Error error = define_native_kernels(**jit, host->features)) {
+        host->error = "cannot define the native kernels: " + message(std::move(error));
+        return host;
+    }
     host->jit = std::move(*jit);
     return host;
 }
@@ -431,9 +465,6 @@ std::string keep_library_calls(llvm::Module& module, const Host& host) {
     return {};
 }
 
-// The name of a kernel's out-of-line copy (add_shared_kernel).
-constexpr const char* kSharedSuffix = "_shared";
-
 std::string kernel_name(Opcode opcode, bool fast) {
     switch (opcode) {
 #define SM2_KERNEL_NAME(name) \
@@ -449,9 +480,6 @@ std::string kernel_name(Opcode opcode, bool fast) {
 class Emitter {
 public:
     Emitter(llvm::Module& module, const Host& host) : module_(module), context_(module.getContext()), host_(host) {}
-
-    // The kernels the emitted function calls out of line (call_shared).
-    const std::vector<std::string>& shared_kernels() const { return shared_kernels_; }
 
     std::string emit(const Executable& executable, const std::string& name) {
         llvm::Type* i8p = llvm::Type::getInt8PtrTy(context_);
@@ -584,10 +612,10 @@ private:
         return {};
     }
 
-    // Calls the process's one out-of-line copy of kernel `name` (add_shared_kernel), through
-    // scratch vectors of its own: the step's scratch vectors stay in registers (SROA gives up
-    // on a vector whose address leaves the function). The declaration carries the attributes
-    // clang inferred for the kernel (nounwind, its pointers noalias and read- or write-only).
+    // Calls the native copy of kernel `name` (define_native_kernels), through scratch vectors
+    // of its own: the step's scratch vectors stay in registers (SROA gives up on a vector whose
+    // address leaves the function). The declaration carries the attributes clang inferred for
+    // the kernel (nounwind, its pointers noalias and read- or write-only).
     // Only the channels each source fetched are copied: a source may be the register itself
     // (emit_fetch), whose other channels nothing reads.
     std::string call_shared(const std::string& name, const Step& step, const std::array<llvm::Value*, 3>& sources) {
@@ -612,8 +640,6 @@ private:
             !error.empty())
             return error;
         builder_->CreateMemCpy(result_, align, call_result_, align, builder_->getInt64(4 * channel_bytes));
-        if (std::find(shared_kernels_.begin(), shared_kernels_.end(), name) == shared_kernels_.end())
-            shared_kernels_.push_back(name);
         return {};
     }
 
@@ -718,7 +744,6 @@ private:
     llvm::AllocaInst* result_ = nullptr;
     std::array<llvm::AllocaInst*, 3> call_sources_{};  // the out-of-line kernels' (call_shared)
     llvm::AllocaInst* call_result_ = nullptr;
-    std::vector<std::string> shared_kernels_;
     llvm::AllocaInst* temps_ = nullptr;  // [kTempCount x register]
 };
 
@@ -827,59 +852,6 @@ llvm::Expected<std::unique_ptr<llvm::Module>> kernel_module(llvm::LLVMContext& c
     return parsed;
 }
 
-// The shared kernel `name` compiled, linked and executable before any routine that calls it
-// is added (a lookup materializes it here, under the caller's lock). Left to the first routine's
-// own lookup, several threads compiling at once ran routines that called into the kernel's code
-// while another thread was still making it executable (3 crashes in 108 runs of
-// Jit.ThreadsCompileAndRunAtOnce under load, none in 240 since).
-std::string finish_shared_kernel(Host& host, const std::string& name) {
-    auto symbol = host.jit->lookup(name + kSharedSuffix);
-    if (!symbol) return "cannot compile the shared kernel " + name + ": " + message(symbol.takeError());
-    return {};
-}
-
-// Adds the out-of-line copy of kernel `name` (Emitter::call_shared) to the main JITDylib, once
-// per process: the same bitcode and passes as an inlined one, so the same results. It is
-// compiled here (finish_shared_kernel()), within the compile of the first routine that calls it
-// (its compile time counts in that routine's).
-std::string add_shared_kernel(Host& host, const std::string& name) {
-    std::lock_guard lock(host.shared_mutex);
-    if (host.shared_kernels.count(name) != 0) return {};
-    // The JIT cache: the kernel's machine code from the directory, else compiled and stored
-    // there (ThreadCompiler) under a key of what it is made from.
-    const std::filesystem::path cache = cache_directory();
-    const std::string key = cache.empty() ? std::string() : cache_key(host.cpu, host.features, "shared kernel " + name);
-    if (!key.empty()) {
-        if (std::unique_ptr<llvm::MemoryBuffer> object = load_cached_object(cache, key)) {
-            if (llvm::Error failure = host.jit->addObjectFile(std::move(object))) {
-                llvm::consumeError(std::move(failure));  // compiled below instead
-            } else {
-                if (std::string why = finish_shared_kernel(host, name); !why.empty()) return why;
-                host.shared_kernels.insert(name);
-                return {};
-            }
-        }
-    }
-    auto context = std::make_unique<llvm::LLVMContext>();
-    auto parsed = kernel_module(*context, host);
-    if (!parsed) return "cannot read the kernel bitcode: " + message(parsed.takeError());
-    std::unique_ptr<llvm::Module> module = std::move(*parsed);
-    llvm::Function* kernel = module->getFunction(name);
-    if (kernel == nullptr) return "the kernel bitcode has no " + name;
-    if (llvm::Error error = kernel->materialize()) return "cannot read a kernel: " + message(std::move(error));
-    kernel->setName(name + kSharedSuffix);
-    kernel->setLinkage(llvm::GlobalValue::ExternalLinkage);
-    target_host(*kernel, host);
-    if (std::string why = prepare_kernels(*module, {kernel}, host); !why.empty()) return why;
-    if (std::string why = optimize_and_verify(*module, host); !why.empty()) return why;
-    if (!key.empty()) module->setModuleIdentifier(kCacheModulePrefix + key);
-    if (llvm::Error added = host.jit->addIRModule(llvm::orc::ThreadSafeModule(std::move(module), std::move(context))))
-        return message(std::move(added));
-    if (std::string why = finish_shared_kernel(host, name); !why.empty()) return why;
-    host.shared_kernels.insert(name);
-    return {};
-}
-
 }  // namespace
 
 struct CompiledShader::Code {
@@ -950,8 +922,6 @@ std::vector<std::shared_ptr<const CompiledShader>> compile_all(std::span<const E
         names.push_back("sm2_shader_" + std::to_string(next_shader++));
         Emitter emitter(*module, jit);
         if (std::string why = emitter.emit(*executable, names.back()); !why.empty()) return fail(why);
-        for (const std::string& kernel : emitter.shared_kernels())
-            if (std::string why = add_shared_kernel(jit, kernel); !why.empty()) return fail(why);
         shaders.push_back(module->getFunction(names.back()));
     }
     const auto finish = [&](const std::shared_ptr<CompiledShader::Code>& code, const std::vector<uintptr_t>& entries,

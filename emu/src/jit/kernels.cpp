@@ -12,9 +12,19 @@
 // no source overlaps; two sources may be the same register (a source fetched as it is is read
 // in place, jit/compiler.cpp's emit_fetch), which __restrict allows for pointers only read.
 // Hence __restrict: the lane loops vectorize without overlap checks.
+//
+// The same file is also compiled to native objects, once per x86-64 level, with
+// SM2_KERNEL_INSTANCE naming a namespace of the level's own (emu/CMakeLists.txt): the kernels the
+// JIT calls out of line (exact exp, log, pow, lit) run from there, so no process compiles them.
+// There the functions are C++ names in that namespace, and the level's table of the arithmetic
+// kernels (native_kernels.h) ends the file.
 #include <cstdint>
+#include <iterator>
 
 #include "step_kernels.h"
+#ifdef SM2_KERNEL_INSTANCE
+#include "jit/native_kernels.h"
+#endif
 
 using sm2::emu::Batch;
 using sm2::emu::LaneMask;
@@ -42,7 +52,11 @@ const k::ConstantRegister* constant_registers(const float* p) {
 using sm2_sample_fn = void (*)(void* sampler, unsigned sampler_index, unsigned variant, unsigned lane_count,
                                uint32_t killed, const float* coordinates, float* texels);
 
+#ifdef SM2_KERNEL_INSTANCE
+namespace SM2_KERNEL_INSTANCE {
+#else
 extern "C" {
+#endif
 
 // `reg`: a register of the batch, or a temporary the compiled code keeps to itself.
 void sm2_k_fetch_register(float* __restrict dst, const float* __restrict reg, unsigned swizzle, unsigned negate,
@@ -106,4 +120,15 @@ void sm2_k_store_register(float* __restrict reg, float* __restrict result, unsig
                       canonical != 0);
 }
 
-}  // extern "C"
+}  // extern "C", or the level's namespace
+
+#ifdef SM2_KERNEL_INSTANCE
+namespace SM2_KERNEL_INSTANCE {
+extern const sm2::emu::jit::NativeKernel native_kernels[] = {
+#define SM2_KERNEL_ENTRY(name) {"sm2_k_" #name, &sm2_k_##name}, {"sm2_k_" #name "_fast", &sm2_k_##name##_fast},
+    SM2_ARITHMETIC_STEPS(SM2_KERNEL_ENTRY)
+#undef SM2_KERNEL_ENTRY
+};
+extern const std::size_t native_kernel_count = std::size(native_kernels);
+}  // namespace SM2_KERNEL_INSTANCE
+#endif

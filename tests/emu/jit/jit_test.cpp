@@ -27,6 +27,13 @@
 
 #include "emu/engine_test_support.h"
 #include "sm2/emu/jit.h"
+#ifdef SM2_TEST_NATIVE_KERNELS
+#include <cmath>
+#include <span>
+
+#include "emu/src/jit/native_kernels.h"
+#include "emu/src/step_kernels.h"
+#endif
 
 namespace sm2::test {
 namespace {
@@ -748,6 +755,88 @@ TEST(Jit, CacheServesTheSameCodeAndRefusesChangedFiles) {
     compile_and_check(false, "without the cache");
     std::filesystem::remove_all(directory);
 }
+
+#ifdef SM2_TEST_NATIVE_KERNELS
+// The interpreter's kernel of `op` (step_kernels.h, compiled by this build's compiler) in the
+// native kernels' form.
+template <Opcode op, bool fast>
+void interpreter_kernel(float* result, const float* a, const float* b, const float* c, unsigned mask) {
+    using Vector = emu::kernels::Vector<float>;
+    emu::kernels::compute<float, op, fast>(*reinterpret_cast<Vector*>(result), *reinterpret_cast<const Vector*>(a),
+                                           *reinterpret_cast<const Vector*>(b), *reinterpret_cast<const Vector*>(c),
+                                           mask);
+}
+
+// Every x86-64 level's native kernels (what the JIT calls out of line: native_kernels.h) on
+// random special values and masks: each channel the mask writes is the interpreter's bits (any
+// NaN for a NaN: the store canonicalizes it). Levels this CPU lacks are skipped.
+TEST(Jit, NativeKernelsOfEveryLevelAreTheInterpretersBits) {
+    struct Reference {
+        const char* name;
+        emu::jit::ArithmeticKernel function;
+    };
+    static constexpr Reference kReferences[] = {
+#define SM2_REFERENCE(name)                                            \
+    {"sm2_k_" #name, &interpreter_kernel<Opcode::name, false>},        \
+        {"sm2_k_" #name "_fast", &interpreter_kernel<Opcode::name, true>},
+        SM2_ARITHMETIC_STEPS(SM2_REFERENCE)
+#undef SM2_REFERENCE
+    };
+    struct Level {
+        const char* name;
+        bool runs;
+        std::span<const emu::jit::NativeKernel> kernels;
+    };
+    __builtin_cpu_init();
+    const bool v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2");
+    const bool v4 = v3 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+                    __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl") &&
+                    __builtin_cpu_supports("avx512cd");
+    const Level levels[] = {
+        {"x86-64", true, {sm2_kernels_x86_64::native_kernels, sm2_kernels_x86_64::native_kernel_count}},
+        {"x86-64-v3", v3, {sm2_kernels_x86_64_v3::native_kernels, sm2_kernels_x86_64_v3::native_kernel_count}},
+        {"x86-64-v4", v4, {sm2_kernels_x86_64_v4::native_kernels, sm2_kernels_x86_64_v4::native_kernel_count}},
+    };
+    using Vector = emu::kernels::Vector<float>;
+    Random random(29);
+    for (const Level& level : levels) {
+        ASSERT_EQ(level.kernels.size(), std::size(kReferences)) << level.name;
+        if (!level.runs) {
+            std::printf("[ jit      ] native kernels for %s: not run on this CPU\n", level.name);
+            continue;
+        }
+        for (size_t k = 0; k < level.kernels.size(); ++k) {
+            const emu::jit::NativeKernel& kernel = level.kernels[k];
+            ASSERT_STREQ(kernel.name, kReferences[k].name) << level.name;
+            for (unsigned round = 0; round < 64; ++round) {
+                Vector sources[3];
+                for (Vector& source : sources)
+                    for (auto& component : source)
+                        for (float& value : component) value = special_float(random);
+                const unsigned mask = 1 + pick(random, 15);
+                Vector native{};
+                Vector reference{};
+                kernel.function(native[0].data(), sources[0][0].data(), sources[1][0].data(), sources[2][0].data(),
+                                mask);
+                kReferences[k].function(reference[0].data(), sources[0][0].data(), sources[1][0].data(),
+                                        sources[2][0].data(), mask);
+                for (unsigned c = 0; c < 4; ++c) {
+                    if ((mask & (1u << c)) == 0) continue;
+                    for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+                        const float got = native[c][l];
+                        const float want = reference[c][l];
+                        if (std::isnan(got) && std::isnan(want)) continue;
+                        ASSERT_EQ(std::bit_cast<uint32_t>(got), std::bit_cast<uint32_t>(want))
+                            << level.name << " " << kernel.name << ", mask " << mask << ", channel " << c << ", lane "
+                            << l << ": " << got << " against the interpreter's " << want << " (sources "
+                            << sources[0][c][l] << ", " << sources[1][c][l] << ", " << sources[2][c][l] << ")";
+                    }
+                }
+            }
+        }
+    }
+}
+#endif
 
 // The time per batch of the interpreter and of the compiled code on the longer sample shaders
 // (printed, not asserted; the best of several rounds, one thread).
