@@ -191,6 +191,22 @@ inline void scalar(Vector<Real>& result, unsigned mask, F f) {
         if (has(mask, c)) result[c] = value;
 }
 
+// pow's first way, for a batch whose exponent b.x is one integer n in [1, 256] on every lane
+// (num::uniform_integer_exponent(b.x); 0 for any other batch): the same correctly rounded result
+// as pow_float() by repeated squaring, a few multiplications instead of its two series (specular
+// exponents are such constants). Fast mode takes it too: it is cheaper than fast's log2 and exp2
+// and more accurate (fast mode had made lighting shaders slower than exact: docs/numerics.md).
+// False, with `result` untouched, for n = 0 and where a lane's rounding is not certain
+// (pow_float_integer()): the series decide.
+inline bool pow_by_squaring(Vector<float>& result, const Vector<float>& a, unsigned n, unsigned mask) {
+    if (n == 0) return false;
+    FloatLanes value;
+    if (!num::pow_float_integer(a[0], n, value)) return false;
+    for (unsigned c = 0; c < 4; ++c)
+        if (has(mask, c)) result[c] = value;
+    return true;
+}
+
 // The result channels of step `op` (those of `mask`, or all that the instruction defines) from
 // the fetched sources a, b, c3.
 template <typename Real, Opcode op, bool fast>
@@ -246,20 +262,8 @@ inline void compute(Vector<Real>& result, const Vector<Real>& a, const Vector<Re
     } else if constexpr (op == Opcode::Log || op == Opcode::LogP) {
         scalar(result, mask, [&](unsigned l) { return log2<Real, fast>(a[0][l]); });
     } else if constexpr (op == Opcode::Pow) {
-        if constexpr (std::is_same_v<Real, float>) {
-            // A constant integer exponent: the same correctly rounded result as pow_float() by
-            // repeated squaring, a few multiplications instead of its two series. Fast mode
-            // takes it too: it is cheaper than fast's log2 and exp2 and more accurate (fast mode
-            // had made lighting shaders slower than exact: docs/numerics.md).
-            if (const unsigned n = num::uniform_integer_exponent(b[0]); n != 0) {
-                Lanes<Real> value;
-                if (num::pow_float_integer(a[0], n, value)) {
-                    for (unsigned c = 0; c < 4; ++c)
-                        if (has(mask, c)) result[c] = value;
-                    return;
-                }
-            }
-        }
+        if constexpr (std::is_same_v<Real, float>)
+            if (pow_by_squaring(result, a, num::uniform_integer_exponent(b[0]), mask)) return;
         scalar(result, mask, [&](unsigned l) { return pow<Real, fast>(a[0][l], b[0][l]); });
     } else if constexpr (op == Opcode::Lit) {
         for (unsigned l = 0; l < N; ++l) {

@@ -65,6 +65,7 @@
 #include <llvm/IR/Instructions.h>
 #include <llvm/IR/IntrinsicInst.h>
 #include <llvm/IR/LLVMContext.h>
+#include <llvm/IR/MDBuilder.h>
 #include <llvm/IR/Module.h>
 #include <llvm/IR/Verifier.h>
 #include <llvm/Passes/PassBuilder.h>
@@ -525,6 +526,7 @@ public:
         for (const auto& [index, value] : executable.defs())
             if (index < executable.constant_count()) values[index] = value;  // the last def wins, as in bind_constants
         for (const auto& [index, value] : values) defs_[index] = def_global(value);
+        def_values_ = values;
         const auto steps = executable.steps();
         const bool fast = executable.transcendentals() == Transcendentals::Fast;
         for (const Step& step : steps) {
@@ -645,18 +647,50 @@ private:
 
     // Whether the step's kernel is called out of line: exact exp, log, pow and lit, whose
     // vectorized series in double are the larger part of the code of the routines that use
-    // them and cost the code generator several times a call's work. pow with a def'd exponent
-    // stays inline: its integer test folds to the squarings (step_kernels.h). Fast exp and log
-    // are short float code and stay inline; fast pow and lit go out of line as exact ones do
-    // (fast pow keeps the squarings in double for a batch of one integer exponent).
+    // them and cost the code generator several times a call's work. Fast exp and log are short
+    // float code and stay inline; fast pow and lit go out of line as exact ones do. pow with a
+    // def'd integer exponent is emit_pow()'s.
     bool out_of_line(const Step& step, bool fast) const {
         if (step.opcode == Opcode::Lit) return true;
         if (step.opcode == Opcode::Exp || step.opcode == Opcode::ExpP || step.opcode == Opcode::Log ||
             step.opcode == Opcode::LogP)
             return !fast;
-        if (step.opcode != Opcode::Pow) return false;
+        return step.opcode == Opcode::Pow;
+    }
+
+    // n of pow_by_squaring() (step_kernels.h) where the step's exponent is a def'd register whose
+    // fetched x is an integer in [1, 256]; 0 otherwise.
+    unsigned def_integer_exponent(const Step& step) const {
         const StepSource& exponent = step.sources[1];
-        return !(exponent.kind == OperandKind::Constant && defs_.count(exponent.index) != 0);
+        if (exponent.kind != OperandKind::Constant) return 0;
+        const auto def = def_values_.find(exponent.index);
+        if (def == def_values_.end()) return 0;
+        kernels::Vector<float> fetched{};
+        kernels::fetch_constant(fetched, def->second, exponent.swizzle, exponent.negate, exponent.channels);
+        return numerics::uniform_integer_exponent(fetched[0]);
+    }
+
+    // pow with a def'd integer exponent: the squarings inline (pow_by_squaring() with n a
+    // constant argument, so that only its multiplications are copied in), and the kernel out of
+    // line in a cold block for the batches they leave undecided (a lane's rounding tie, NaN).
+    // Inline, pow's series were about 40% of the compile of routines with such a pow (alu64, the
+    // lighting shaders), for batches that almost never run them.
+    std::string emit_pow(const std::string& name, const Step& step, const std::array<llvm::Value*, 3>& sources,
+                         unsigned n) {
+        llvm::Value* decided = nullptr;
+        if (std::string error =
+                call("sm2_k_pow_by_squaring", {result_, sources[0], u32(n), u32(step.dest.mask)}, &decided);
+            !error.empty())
+            return error;
+        auto* series = llvm::BasicBlock::Create(context_, "pow_series", function_);
+        auto* next = llvm::BasicBlock::Create(context_, "after_pow", function_);
+        builder_->CreateCondBr(builder_->CreateICmpNE(decided, builder_->getInt32(0)), next, series,
+                               llvm::MDBuilder(context_).createBranchWeights(1000, 1));
+        builder_->SetInsertPoint(series);
+        if (std::string error = call_shared(name, step, sources); !error.empty()) return error;
+        builder_->CreateBr(next);
+        builder_->SetInsertPoint(next);
+        return {};
     }
 
     // Fetches source `s` into `scratch`, or points `source` (the scratch vector the step's kernel
@@ -714,9 +748,10 @@ private:
         default: {
             const std::string name = kernel_name(step.opcode, fast);
             if (name.empty()) return {};  // as the interpreter: lowering emits nothing else
-            if (std::string error = out_of_line(step, fast)
-                                        ? call_shared(name, step, sources)
-                                        : call(name, {result_, sources[0], sources[1], sources[2], u32(mask)});
+            const unsigned n = step.opcode == Opcode::Pow ? def_integer_exponent(step) : 0;
+            if (std::string error = n != 0                 ? emit_pow(name, step, sources, n)
+                                    : out_of_line(step, fast) ? call_shared(name, step, sources)
+                                                              : call(name, {result_, sources[0], sources[1], sources[2], u32(mask)});
                 !error.empty())
                 return error;
             break;
@@ -740,6 +775,7 @@ private:
     llvm::Value* sampler_ = nullptr;
     llvm::Value* sample_ = nullptr;
     std::map<unsigned, llvm::Value*> defs_;  // def'd register -> its value as a module constant
+    std::map<unsigned, std::array<float, 4>> def_values_;  // def'd register -> its value
     std::array<llvm::AllocaInst*, 3> sources_{};
     llvm::AllocaInst* result_ = nullptr;
     std::array<llvm::AllocaInst*, 3> call_sources_{};  // the out-of-line kernels' (call_shared)

@@ -93,6 +93,12 @@ void sm2_k_fetch_zero(float* __restrict dst, unsigned negate, unsigned channels)
 SM2_ARITHMETIC_STEPS(SM2_KERNEL)
 #undef SM2_KERNEL
 
+// 1 where pow_by_squaring() decided the batch for the exponent n (the JIT then skips pow's
+// out-of-line series).
+unsigned sm2_k_pow_by_squaring(float* __restrict result, const float* __restrict a, unsigned n, unsigned mask) {
+    return k::pow_by_squaring(vector(result), vector(a), n, mask) ? 1u : 0u;
+}
+
 void sm2_k_mova(void* __restrict batch, const float* __restrict a, unsigned mask) {
     k::mova(batch_of(batch), vector(a), mask);
 }
