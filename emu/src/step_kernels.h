@@ -192,14 +192,16 @@ inline void scalar(Vector<Real>& result, unsigned mask, F f) {
 }
 
 // pow's first way, for a batch whose exponent b.x is one integer n in [1, 256] on every lane
-// (num::uniform_integer_exponent(b.x); 0 for any other batch): the same correctly rounded result
-// as pow_float() by repeated squaring, a few multiplications instead of its two series (specular
+// (n = num::uniform_integer_exponent(b.x), not 0): the same correctly rounded result as
+// pow_float() by repeated squaring, a few multiplications instead of its two series (specular
 // exponents are such constants). Fast mode takes it too: it is cheaper than fast's log2 and exp2
 // and more accurate (fast mode had made lighting shaders slower than exact: docs/numerics.md).
-// False, with `result` untouched, for n = 0 and where a lane's rounding is not certain
-// (pow_float_integer()): the series decide.
-inline bool pow_by_squaring(Vector<float>& result, const Vector<float>& a, unsigned n, unsigned mask) {
-    if (n == 0) return false;
+// False, with `result` untouched, where a lane's rounding is not certain (pow_float_integer()):
+// the series decide. Not inlined into compute(): there clang 14 carried pow's first exponent
+// load into the series' lane loop as a loop-carried value and left that loop scalar (the native
+// exact pow 4x slower, scene 27 1.5x). The JIT still inlines it (prepare_kernels()).
+[[gnu::noinline]] inline bool pow_by_squaring(Vector<float>& result, const Vector<float>& a, unsigned n,
+                                              unsigned mask) {
     FloatLanes value;
     if (!num::pow_float_integer(a[0], n, value)) return false;
     for (unsigned c = 0; c < 4; ++c)
@@ -262,8 +264,10 @@ inline void compute(Vector<Real>& result, const Vector<Real>& a, const Vector<Re
     } else if constexpr (op == Opcode::Log || op == Opcode::LogP) {
         scalar(result, mask, [&](unsigned l) { return log2<Real, fast>(a[0][l]); });
     } else if constexpr (op == Opcode::Pow) {
-        if constexpr (std::is_same_v<Real, float>)
-            if (pow_by_squaring(result, a, num::uniform_integer_exponent(b[0]), mask)) return;
+        if constexpr (std::is_same_v<Real, float>) {
+            if (const unsigned n = num::uniform_integer_exponent(b[0]); n != 0)
+                if (pow_by_squaring(result, a, n, mask)) return;
+        }
         scalar(result, mask, [&](unsigned l) { return pow<Real, fast>(a[0][l], b[0][l]); });
     } else if constexpr (op == Opcode::Lit) {
         for (unsigned l = 0; l < N; ++l) {
