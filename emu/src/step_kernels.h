@@ -197,11 +197,8 @@ inline void scalar(Vector<Real>& result, unsigned mask, F f) {
 // exponents are such constants). Fast mode takes it too: it is cheaper than fast's log2 and exp2
 // and more accurate (fast mode had made lighting shaders slower than exact: docs/numerics.md).
 // False, with `result` untouched, where a lane's rounding is not certain (pow_float_integer()):
-// the series decide. Not inlined into compute(): there clang 14 carried pow's first exponent
-// load into the series' lane loop as a loop-carried value and left that loop scalar (the native
-// exact pow 4x slower, scene 27 1.5x). The JIT still inlines it (prepare_kernels()).
-[[gnu::noinline]] inline bool pow_by_squaring(Vector<float>& result, const Vector<float>& a, unsigned n,
-                                              unsigned mask) {
+// the series decide.
+inline bool pow_by_squaring(Vector<float>& result, const Vector<float>& a, unsigned n, unsigned mask) {
     FloatLanes value;
     if (!num::pow_float_integer(a[0], n, value)) return false;
     for (unsigned c = 0; c < 4; ++c)
@@ -268,6 +265,11 @@ inline void compute(Vector<Real>& result, const Vector<Real>& a, const Vector<Re
             if (const unsigned n = num::uniform_integer_exponent(b[0]); n != 0)
                 if (pow_by_squaring(result, a, n, mask)) return;
         }
+        // A compiler barrier: without it clang 14 carries the exponent's first load (the test
+        // above) into this lane loop as a loop-carried value and leaves the loop scalar (the
+        // native exact pow 4x slower, scene 27 1.5x). A function call between the two would do
+        // the same but needs a symbol the native kernels' levels would share (CMakeLists.txt).
+        asm volatile("" ::: "memory");
         scalar(result, mask, [&](unsigned l) { return pow<Real, fast>(a[0][l], b[0][l]); });
     } else if constexpr (op == Opcode::Lit) {
         for (unsigned l = 0; l < N; ++l) {
