@@ -525,8 +525,7 @@ public:
         std::map<unsigned, std::array<float, 4>> values;
         for (const auto& [index, value] : executable.defs())
             if (index < executable.constant_count()) values[index] = value;  // the last def wins, as in bind_constants
-        for (const auto& [index, value] : values) defs_[index] = def_global(value);
-        def_values_ = values;
+        for (const auto& [index, value] : values) defs_[index] = {value, def_global(value)};
         const auto steps = executable.steps();
         const bool fast = executable.transcendentals() == Transcendentals::Fast;
         for (const Step& step : steps) {
@@ -663,10 +662,10 @@ private:
     unsigned def_integer_exponent(const Step& step) const {
         const StepSource& exponent = step.sources[1];
         if (exponent.kind != OperandKind::Constant) return 0;
-        const auto def = def_values_.find(exponent.index);
-        if (def == def_values_.end()) return 0;
+        const auto def = defs_.find(exponent.index);
+        if (def == defs_.end()) return 0;
         kernels::Vector<float> fetched{};
-        kernels::fetch_constant(fetched, def->second, exponent.swizzle, exponent.negate, exponent.channels);
+        kernels::fetch_constant(fetched, def->second.value, exponent.swizzle, exponent.negate, exponent.channels);
         return numerics::uniform_integer_exponent(fetched[0]);
     }
 
@@ -713,7 +712,7 @@ private:
             // it (0 * x, pow's integer exponent) fold away.
             if (auto def = defs_.find(s.index); def != defs_.end())
                 return call("sm2_k_fetch_constant",
-                            {scratch, def->second, u32(0), u32(s.swizzle), u32(s.negate), u32(s.channels)});
+                            {scratch, def->second.global, u32(0), u32(s.swizzle), u32(s.negate), u32(s.channels)});
             return call("sm2_k_fetch_constant",
                         {scratch, constants_, u32(s.index), u32(s.swizzle), u32(s.negate), u32(s.channels)});
         case OperandKind::RelativeConstant:
@@ -748,12 +747,14 @@ private:
         default: {
             const std::string name = kernel_name(step.opcode, fast);
             if (name.empty()) return {};  // as the interpreter: lowering emits nothing else
-            const unsigned n = step.opcode == Opcode::Pow ? def_integer_exponent(step) : 0;
-            if (std::string error = n != 0                 ? emit_pow(name, step, sources, n)
-                                    : out_of_line(step, fast) ? call_shared(name, step, sources)
-                                                              : call(name, {result_, sources[0], sources[1], sources[2], u32(mask)});
-                !error.empty())
-                return error;
+            std::string error;
+            if (const unsigned n = step.opcode == Opcode::Pow ? def_integer_exponent(step) : 0; n != 0)
+                error = emit_pow(name, step, sources, n);
+            else if (out_of_line(step, fast))
+                error = call_shared(name, step, sources);
+            else
+                error = call(name, {result_, sources[0], sources[1], sources[2], u32(mask)});
+            if (!error.empty()) return error;
             break;
         }
         }
@@ -774,8 +775,11 @@ private:
     llvm::Value* constant_count_ = nullptr;
     llvm::Value* sampler_ = nullptr;
     llvm::Value* sample_ = nullptr;
-    std::map<unsigned, llvm::Value*> defs_;  // def'd register -> its value as a module constant
-    std::map<unsigned, std::array<float, 4>> def_values_;  // def'd register -> its value
+    struct Def {
+        std::array<float, 4> value;
+        llvm::Value* global;  // the value as a module constant
+    };
+    std::map<unsigned, Def> defs_;  // by def'd register
     std::array<llvm::AllocaInst*, 3> sources_{};
     llvm::AllocaInst* result_ = nullptr;
     std::array<llvm::AllocaInst*, 3> call_sources_{};  // the out-of-line kernels' (call_shared)
