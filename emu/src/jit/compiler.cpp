@@ -528,6 +528,11 @@ public:
         for (const auto& [index, value] : values) defs_[index] = {value, def_global(value)};
         const auto steps = executable.steps();
         const bool fast = executable.transcendentals() == Transcendentals::Fast;
+        // A vertex routine runs for a draw's vertices, a pixel routine for its pixels: thousands
+        // of times as many batches in the sample scenes (bench_1024: 850 vertices and 5.5 million
+        // pixels a frame). Vertex routines spend nothing on pow's squarings and their cold blocks,
+        // which cost the lighting shaders' compile more than their vertices' run time could gain.
+        inline_squarings_ = executable.version().type == isa::ShaderType::Pixel;
         for (const Step& step : steps) {
             if (std::string error = emit_step(step, fast); !error.empty()) return error;
             if (step.opcode == Opcode::TexKill) {
@@ -648,7 +653,7 @@ private:
     // vectorized series in double are the larger part of the code of the routines that use
     // them and cost the code generator several times a call's work. Fast exp and log are short
     // float code and stay inline; fast pow and lit go out of line as exact ones do. pow with a
-    // def'd integer exponent is emit_pow()'s.
+    // def'd integer exponent is emit_pow()'s in pixel routines (inline_squarings_).
     bool out_of_line(const Step& step, bool fast) const {
         if (step.opcode == Opcode::Lit) return true;
         if (step.opcode == Opcode::Exp || step.opcode == Opcode::ExpP || step.opcode == Opcode::Log ||
@@ -748,7 +753,7 @@ private:
             const std::string name = kernel_name(step.opcode, fast);
             if (name.empty()) return {};  // as the interpreter: lowering emits nothing else
             std::string error;
-            if (const unsigned n = step.opcode == Opcode::Pow ? def_integer_exponent(step) : 0; n != 0)
+            if (const unsigned n = step.opcode == Opcode::Pow && inline_squarings_ ? def_integer_exponent(step) : 0; n != 0)
                 error = emit_pow(name, step, sources, n);
             else if (out_of_line(step, fast))
                 error = call_shared(name, step, sources);
@@ -785,6 +790,7 @@ private:
     std::array<llvm::AllocaInst*, 3> call_sources_{};  // the out-of-line kernels' (call_shared)
     llvm::AllocaInst* call_result_ = nullptr;
     llvm::AllocaInst* temps_ = nullptr;  // [kTempCount x register]
+    bool inline_squarings_ = false;  // emit_pow() for pow with a def'd integer exponent
 };
 
 // Makes `function`, a kernel of the bitcode (compiled there for x86-64-v4), compile for the

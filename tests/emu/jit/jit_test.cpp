@@ -757,16 +757,18 @@ TEST(Jit, CacheServesTheSameCodeAndRefusesChangedFiles) {
     std::filesystem::remove_all(directory);
 }
 
-// A pixel shader of one step, oC0.mask = pow(t0.x, c0.z or -c0.z) with c0 def'd, its z
-// `exponent` (negated in the def where the source negates it, so the step reads `exponent`).
-emu::Executable pow_by_def(float exponent, bool negate, bool fast, uint8_t mask) {
+// A shader of one step, pow(x, c0.z or -c0.z) with c0 def'd, its z `exponent` (negated in the
+// def where the source negates it, so the step reads `exponent`): a pixel shader's oC0.mask =
+// pow(t0.x, ...), a vertex shader's oT0.mask = pow(v0.x, ...).
+emu::Executable pow_by_def(ShaderType type, float exponent, bool negate, bool fast, uint8_t mask) {
     Step pow;
     pow.opcode = Opcode::Pow;
-    pow.dest.slot = static_cast<uint16_t>(emu::slot::kRenderTargetFirst);
+    const bool pixel = type == ShaderType::Pixel;
+    pow.dest.slot = static_cast<uint16_t>(pixel ? emu::slot::kRenderTargetFirst : emu::slot::kTexCoordOutFirst);
     pow.dest.mask = mask;
     pow.source_count = 2;
     pow.sources[0].kind = OperandKind::Lanes;
-    pow.sources[0].index = static_cast<uint16_t>(emu::slot::kTexCoordFirst);
+    pow.sources[0].index = static_cast<uint16_t>(pixel ? emu::slot::kTexCoordFirst : emu::slot::kInputFirst);
     pow.sources[0].swizzle = 0x00;  // .xxxx
     pow.sources[0].channels = 0x1;
     pow.sources[1].kind = OperandKind::Constant;
@@ -775,16 +777,17 @@ emu::Executable pow_by_def(float exponent, bool negate, bool fast, uint8_t mask)
     pow.sources[1].negate = negate;
     pow.sources[1].channels = 0x1;
     const float def_z = negate ? -exponent : exponent;
-    return emu::Executable(isa::ShaderVersion{ShaderType::Pixel, 2, 0}, emu::Precision::Fp32, 1, {pow},
+    return emu::Executable(isa::ShaderVersion{type, 2, 0}, emu::Precision::Fp32, 1, {pow},
                            {{0, {7.0f, 3.0f, def_z, 2.0f}}}, 1,
                            fast ? emu::Transcendentals::Fast : emu::Transcendentals::Exact);
 }
 
-// pow with a def'd exponent, which the JIT splits (jit/compiler.cpp's emit_pow): the squarings
-// inline for an integer in [1, 256], the kernel out of line for the batches they leave
-// undecided, the kernel alone for every other exponent. The bases include exact squaring ties
-// ((1 + 2^-12)^2 lies halfway between two floats) and NaN, so the out-of-line block runs, which
-// the test checks; every output is the interpreter's bits.
+// pow with a def'd exponent, which the JIT splits in pixel routines (jit/compiler.cpp's
+// emit_pow): the squarings inline for an integer in [1, 256], the kernel out of line for the
+// batches they leave undecided, the kernel alone for every other exponent (and in vertex
+// routines, for every exponent). The bases include exact squaring ties ((1 + 2^-12)^2 lies
+// halfway between two floats) and NaN, so the out-of-line block runs, which the test checks;
+// every output is the interpreter's bits.
 TEST(Jit, PowWithADefdExponentIsTheInterpretersBits) {
     if (!emu::jit::available()) GTEST_SKIP() << "built without the JIT";
     const float exponents[] = {1.0f, 2.0f, 3.0f, 5.0f, 32.0f, 255.0f, 256.0f, 257.0f, 0.5f, -2.0f, 0.0f, 2.5f,
@@ -792,40 +795,41 @@ TEST(Jit, PowWithADefdExponentIsTheInterpretersBits) {
     Random random(41);
     std::uniform_real_distribution<float> ordinary(0.01f, 1.5f);
     unsigned decided_batches = 0, undecided_batches = 0;
-    for (const float exponent : exponents)
-        for (const bool fast : {false, true})
-            for (const bool negate : {false, true}) {
-                const emu::Executable executable =
-                    pow_by_def(exponent, negate, fast, static_cast<uint8_t>(1 + pick(random, 15)));
-                std::string error;
-                const auto compiled = emu::jit::compile(executable, &error);
-                ASSERT_NE(compiled, nullptr) << error;
-                const emu::ConstantFile constants = executable.bind_constants();
-                for (unsigned b = 0; b < 24; ++b) {
-                    auto input = std::make_unique<emu::Batch>();
-                    randomize(*input, random, 1);
-                    input->killed = 0;
-                    input->lane_count = emu::kBatchLanes;
-                    // A third of the batches ordinary finite values (the squarings decide them), a
-                    // third with one lane a squaring tie, a third with special values (NaN among them).
-                    emu::FloatLanes& bases = input->registers[emu::slot::kTexCoordFirst][0];
-                    for (float& base : bases) base = b % 3 == 2 ? special_float(random) : ordinary(random);
-                    const float tie = 1.0f + static_cast<float>(1 + pick(random, 64)) * 0x1p-12f;
-                    if (b % 3 == 1) bases[pick(random, emu::kBatchLanes)] = tie;
-                    emu::FloatLanes squared;
-                    if (exponent == std::trunc(exponent) && exponent >= 1.0f && exponent <= 256.0f)
-                        ++(emu::numerics::pow_float_integer(bases, static_cast<unsigned>(exponent), squared)
-                               ? decided_batches
-                               : undecided_batches);
-                    auto by_interpreter = std::make_unique<emu::Batch>(*input);
-                    auto by_jit = std::make_unique<emu::Batch>(*input);
-                    emu::execute(executable, constants, *by_interpreter, nullptr);
-                    compiled->run(constants, *by_jit, nullptr);
-                    ASSERT_TRUE(same_batches(*by_interpreter, *by_jit))
-                        << "exponent " << exponent << (negate ? " (a negated def)" : "") << (fast ? " (fast)" : "")
-                        << ", batch " << b;
+    for (const ShaderType type : {ShaderType::Pixel, ShaderType::Vertex})
+        for (const float exponent : exponents)
+            for (const bool fast : {false, true})
+                for (const bool negate : {false, true}) {
+                    const emu::Executable executable =
+                        pow_by_def(type, exponent, negate, fast, static_cast<uint8_t>(1 + pick(random, 15)));
+                    std::string error;
+                    const auto compiled = emu::jit::compile(executable, &error);
+                    ASSERT_NE(compiled, nullptr) << error;
+                    const emu::ConstantFile constants = executable.bind_constants();
+                    for (unsigned b = 0; b < 24; ++b) {
+                        auto input = std::make_unique<emu::Batch>();
+                        randomize(*input, random, 1);
+                        input->killed = 0;
+                        input->lane_count = emu::kBatchLanes;
+                        // A third of the batches ordinary finite values (the squarings decide them), a
+                        // third with one lane a squaring tie, a third with special values (NaN among them).
+                        emu::FloatLanes& bases = input->registers[executable.steps()[0].sources[0].index][0];
+                        for (float& base : bases) base = b % 3 == 2 ? special_float(random) : ordinary(random);
+                        const float tie = 1.0f + static_cast<float>(1 + pick(random, 64)) * 0x1p-12f;
+                        if (b % 3 == 1) bases[pick(random, emu::kBatchLanes)] = tie;
+                        emu::FloatLanes squared;
+                        if (exponent == std::trunc(exponent) && exponent >= 1.0f && exponent <= 256.0f)
+                            ++(emu::numerics::pow_float_integer(bases, static_cast<unsigned>(exponent), squared)
+                                   ? decided_batches
+                                   : undecided_batches);
+                        auto by_interpreter = std::make_unique<emu::Batch>(*input);
+                        auto by_jit = std::make_unique<emu::Batch>(*input);
+                        emu::execute(executable, constants, *by_interpreter, nullptr);
+                        compiled->run(constants, *by_jit, nullptr);
+                        ASSERT_TRUE(same_batches(*by_interpreter, *by_jit))
+                            << (type == ShaderType::Pixel ? "pixel" : "vertex") << " routine, exponent " << exponent
+                            << (negate ? " (a negated def)" : "") << (fast ? " (fast)" : "") << ", batch " << b;
+                    }
                 }
-            }
     // Both blocks ran: every integer exponent's batches of ordinary values are decided inline.
     EXPECT_GT(undecided_batches, 20u);
     EXPECT_LT(undecided_batches, decided_batches);
