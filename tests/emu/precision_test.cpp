@@ -2,7 +2,14 @@
 // fp64 computes in double. Expected values are worked out bit by bit in the comments.
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
+
 #include "emu/engine_test_support.h"
+#include "emu/src/numerics.h"
 
 namespace sm2::test {
 namespace {
@@ -102,6 +109,62 @@ TEST(Fp16, IgnoredUnlessAsked) {
     OneInstruction ps;
     ps.shader = ShaderType::Pixel;
     EXPECT_EQ(mov_in(ps, 1.0f + 0x1p-11f, true), 1.0f + 0x1p-11f);
+}
+
+// The roundings by their definitions, in double (every float and every rounded value is exact
+// there): `bits` significant bits (the leading one included) to nearest even by nearbyint()
+// (the default rounding mode), the range tested on the rounded value.
+double significant_bits(double x, int bits) {
+    int exponent = 0;
+    const double fraction = std::frexp(x, &exponent);  // x = fraction * 2^exponent, |fraction| in [1/2, 1)
+    return std::ldexp(std::nearbyint(std::ldexp(fraction, bits)), exponent - bits);
+}
+float fp24_by_definition(float x) {
+    if (!std::isfinite(x)) return x;
+    const double rounded = significant_bits(x, 17);
+    if (std::fabs(rounded) >= 0x1p64) return std::copysign(kInf, x);
+    if (std::fabs(rounded) < 0x1p-62) return std::copysign(0.0f, x);
+    return static_cast<float>(rounded);
+}
+float fp16_by_definition(float x) {
+    if (!std::isfinite(x)) return x;
+    // Below 2^-14: half denormals, multiples of 2^-24.
+    const double rounded = std::fabs(x) < 0x1p-14f ? std::ldexp(std::nearbyint(std::ldexp(double{x}, 24)), -24)
+                                                   : significant_bits(x, 11);
+    if (std::fabs(rounded) >= 65536.0) return std::copysign(kInf, x);
+    return std::copysign(static_cast<float>(rounded), x);
+}
+
+// numerics.h's roundings, which work on the bits, against their definitions: a spread over
+// every exponent and sign, every tie of a sample (the dropped bits exactly half), and the
+// floats around each limit (2^-62 and 2^64; half's 2^-24, 2^-14, 65504 and 65520), NaN
+// payloads and infinities kept. (All 2^32 floats were compared once by hand with the float
+// formulation these replaced.)
+TEST(Rounding, Fp24AndFp16AreTheirDefinitionsBitForBit) {
+    std::vector<uint32_t> inputs;
+    std::mt19937 random(7);
+    for (uint32_t i = 0; i < (1u << 22); ++i) inputs.push_back(i * 1024u + (random() & 1023u));
+    for (uint32_t i = 0; i < (1u << 16); ++i) {
+        const uint32_t bits = static_cast<uint32_t>(random());
+        inputs.push_back((bits & ~0x7Fu) | 0x40u);      // an fp24 tie
+        inputs.push_back((bits & ~0x1FFFu) | 0x1000u);  // a half tie
+    }
+    for (const float limit : {0x1p-62f, 0x1p64f, 0x1p-24f, 0x1p-14f, 65504.0f, 65520.0f}) {
+        const auto bits = std::bit_cast<uint32_t>(limit);
+        for (uint32_t d = 0; d < 512; ++d)
+            for (const uint32_t sign : {0u, 0x80000000u}) inputs.insert(inputs.end(), {(bits - d) | sign, (bits + d) | sign});
+    }
+    inputs.insert(inputs.end(), {0x7F800000u, 0xFF800000u, 0x7FC00001u, 0xFF812345u, 0x7F800001u, 0u, 0x80000000u});
+    unsigned wrong24 = 0, wrong16 = 0;
+    for (const uint32_t bits : inputs) {
+        const float x = std::bit_cast<float>(bits);
+        if (!same_bits(emu::numerics::round_to_fp24(x), fp24_by_definition(x)) && ++wrong24 <= 3)
+            ADD_FAILURE() << "fp24 of bits 0x" << std::hex << bits;
+        if (!same_bits(emu::numerics::round_to_fp16(x), fp16_by_definition(x)) && ++wrong16 <= 3)
+            ADD_FAILURE() << "fp16 of bits 0x" << std::hex << bits;
+    }
+    EXPECT_EQ(wrong24, 0u);
+    EXPECT_EQ(wrong16, 0u);
 }
 
 TEST(Fp64, ComputesInDouble) {
