@@ -384,61 +384,60 @@ inline void sincos(float x, float& sine, float& cosine) {
 // has none (flushed to signed zero, as the s16e7 format has no denormals); fp16 keeps IEEE
 // half denormals.
 
-// Both roundings work on the float's bits, branch-free (selects only), so that storing a
-// step's result stays a vectorized loop. Each range is one unsigned test on the input's
-// magnitude bits, found for the rounded value: the least magnitude that rounds up to a limit
-// is the limit less half the ulp kept (a tie, which rounds up, its last kept bit being odd).
-// clang compiles fp24's to 11 AVX-512 instructions and fp16's to 13, where the float
-// formulation before (fabs, copysign, float compares) took 14 and 17 and more register
-// copies: the JIT's fp24 alu64 runs in 0.85 of the time (docs/numerics.md). Every one of the
-// 2^32 inputs gives that formulation's bits (compared once by hand; Rounding.* checks the
+// Both roundings are branch-free (selects only), so that storing a step's result stays a
+// vectorized loop, and use float operations but for one `and` that takes the exponent: LLVM's
+// code generator analyses the known bits of every integer operation, through each step's
+// rounding, which made integer formulations cost most of the compile of an fp24 routine
+// (shader_bench jit/compile alu64 fp24: 95-99 ms with fabs/copysign and integer rounding, 59
+// with these). clang compiles each to about a dozen AVX-512 instructions. Every one of the 2^32
+// inputs gives the earlier formulations' bits (compared once by hand; Rounding.* checks the
 // definitions on a sample, every limit and ties).
+//
+// Rounding to nearest even at the format's ulp by a float addition: for x in [2^e, 2^(e+1))
+// and m kept mantissa bits, x + 2^(e + 23 - m) (same sign) lies in a binade whose ulp is
+// 2^(e - m), so the addition rounds x there, ties to even, and subtracting 2^(e + 23 - m)
+// again is exact. The ranges are tests on |x| against the least magnitude that rounds to the
+// limit: the limit less half the ulp kept (a tie, which rounds up, its last kept bit being odd).
 
 namespace detail {
-// The bits of a finite float with its 23-bit mantissa rounded to `kept` bits, to nearest even
-// (a carry out of the mantissa correctly bumps the exponent), the sign as it was.
+// 2^(e + 23 - kept) with x's sign, e the exponent of a normal x.
 template <int kept>
-inline uint32_t round_mantissa_bits(uint32_t bits) {
-    constexpr int dropped = 23 - kept;
-    constexpr uint32_t half = (1u << (dropped - 1)) - 1u;
-    const uint32_t lowest_kept = (bits >> dropped) & 1u;
-    return (bits + half + lowest_kept) & ~((1u << dropped) - 1u);
+inline float rounding_shift(float x) {
+    return std::bit_cast<float>(std::bit_cast<uint32_t>(x) & 0xFF800000u) * static_cast<float>(1u << (23 - kept));
 }
-
-// A float's bits from its sign bit (that of `bits`) and the magnitude bits of the value that
-// lies beyond a format's largest finite value, for magnitude bits `magnitude`: infinity, or the
-// input itself where it is an infinity or a NaN (its payload kept).
-inline uint32_t beyond_range(uint32_t bits, uint32_t magnitude) {
-    return (bits & 0x80000000u) | (magnitude > 0x7F800000u ? magnitude : 0x7F800000u);
+// What lies beyond a format's largest value (`magnitude` = |x| >= its limit): infinity with
+// x's sign, or x itself where it is an infinity or a NaN (its payload kept).
+inline float beyond_range(float x, float magnitude) {
+    const float inf = kInfinity<float>;
+    return magnitude < inf ? std::copysign(inf, x) : x;
 }
 }  // namespace detail
 
 // fp24 = s16e7: 16 mantissa bits, exponent bias 63, normal range [2^-62, (2 - 2^-16) * 2^63].
 // Round to nearest even on the mantissa; beyond the range: +-inf; below 2^-62: +-0.
 inline float round_to_fp24(float x) {
-    const uint32_t bits = std::bit_cast<uint32_t>(x);
-    const uint32_t magnitude = bits & 0x7FFFFFFFu;
-    // Rounded, 2^-62 (0x20800000) from 0x207FFFC0 on and 2^64 (0x5F800000) from 0x5F7FFFC0.
-    constexpr uint32_t kLeast = 0x207FFFC0u, kOverflow = 0x5F7FFFC0u;
-    const bool in_range = magnitude - kLeast < kOverflow - kLeast;  // (unsigned: below kLeast wraps)
-    const uint32_t outside = magnitude >= kOverflow ? detail::beyond_range(bits, magnitude) : bits & 0x80000000u;
-    return std::bit_cast<float>(in_range ? detail::round_mantissa_bits<16>(bits) : outside);
+    const float magnitude = std::fabs(x);
+    // Rounded, 2^-62 from the float of bits 0x207FFFC0 on, 2^64 from that of 0x5F7FFFC0.
+    const float least = std::bit_cast<float>(0x207FFFC0u), overflow = std::bit_cast<float>(0x5F7FFFC0u);
+    const bool in_range = magnitude >= least && magnitude < overflow;  // (false for NaN)
+    const float shift = detail::rounding_shift<16>(x);
+    const float outside = !(magnitude < overflow) ? detail::beyond_range(x, magnitude) : std::copysign(0.0f, x);
+    return in_range ? (x + shift) - shift : outside;
 }
 
 // fp16 = IEEE binary16 (s10e5): round to nearest even, max 65504, denormals down to 2^-24.
 inline float round_to_fp16(float x) {
-    const uint32_t bits = std::bit_cast<uint32_t>(x);
-    const uint32_t magnitude = bits & 0x7FFFFFFFu;
-    // 2^-14 (0x38800000) is the least normal half; from 65520 (0x477FF000), halfway between
-    // 65504 (the largest half) and 65536, ties go to even: overflow.
-    constexpr uint32_t kLeastNormal = 0x38800000u, kOverflow = 0x477FF000u;
-    const bool normal = magnitude - kLeastNormal < kOverflow - kLeastNormal;
+    const float magnitude = std::fabs(x);
+    // 2^-14 is the least normal half; from 65520, halfway between 65504 (the largest half) and
+    // 65536, ties go to even: overflow.
+    const float overflow = 65520.0f;
+    const bool normal = magnitude >= 0x1p-14f && magnitude < overflow;
+    const float shift = detail::rounding_shift<10>(x);
     // Half denormals are multiples of 2^-24; 0.5 has exactly that spacing, so adding and
     // removing it rounds to the nearest multiple (ties to even).
-    const float denormal = (std::bit_cast<float>(magnitude) + 0.5f) - 0.5f;
-    const uint32_t outside = magnitude >= kOverflow ? detail::beyond_range(bits, magnitude)
-                                                    : (bits & 0x80000000u) | std::bit_cast<uint32_t>(denormal);
-    return std::bit_cast<float>(normal ? detail::round_mantissa_bits<10>(bits) : outside);
+    const float denormal = std::copysign((magnitude + 0.5f) - 0.5f, x);
+    const float outside = !(magnitude < overflow) ? detail::beyond_range(x, magnitude) : denormal;
+    return normal ? (x + shift) - shift : outside;
 }
 
 // The rounding a step's result gets, decided once per step when a shader is lowered.
