@@ -389,9 +389,9 @@ inline void sincos(float x, float& sine, float& cosine) {
 // code generator analyses the known bits of every integer operation, through each step's
 // rounding, which made integer formulations cost most of the compile of an fp24 routine
 // (shader_bench jit/compile alu64 fp24: 95-99 ms with fabs/copysign and integer rounding,
-// 59-64 with these). clang compiles each to about a dozen AVX-512 instructions. Every one of the 2^32
-// inputs gives the earlier formulations' bits (compared once by hand; Rounding.* checks the
-// definitions on a sample, every limit and ties).
+// 59-64 with these). clang compiles each to about a dozen AVX-512 instructions. Every one of
+// the 2^32 inputs gives the earlier formulations' bits (compared once by hand; Rounding.*
+// checks the definitions on a sample, every limit and ties).
 //
 // Rounding to nearest even at the format's ulp by a float addition: for x in [2^e, 2^(e+1))
 // and m kept mantissa bits, x + 2^(e + 23 - m) (same sign) lies in a binade whose ulp is

@@ -152,7 +152,8 @@ TEST(Rounding, Fp24AndFp16AreTheirDefinitionsBitForBit) {
     for (const float limit : {0x1p-62f, 0x1p64f, 0x1p-24f, 0x1p-14f, 65504.0f, 65520.0f}) {
         const auto bits = std::bit_cast<uint32_t>(limit);
         for (uint32_t d = 0; d < 512; ++d)
-            for (const uint32_t sign : {0u, 0x80000000u}) inputs.insert(inputs.end(), {(bits - d) | sign, (bits + d) | sign});
+            for (const uint32_t sign : {0u, 0x80000000u})
+                inputs.insert(inputs.end(), {(bits - d) | sign, (bits + d) | sign});
     }
     inputs.insert(inputs.end(), {0x7F800000u, 0xFF800000u, 0x7FC00001u, 0xFF812345u, 0x7F800001u, 0u, 0x80000000u});
     unsigned wrong24 = 0, wrong16 = 0;

@@ -753,7 +753,8 @@ private:
             const std::string name = kernel_name(step.opcode, fast);
             if (name.empty()) return {};  // as the interpreter: lowering emits nothing else
             std::string error;
-            if (const unsigned n = step.opcode == Opcode::Pow && inline_squarings_ ? def_integer_exponent(step) : 0; n != 0)
+            const bool squarings = step.opcode == Opcode::Pow && inline_squarings_;
+            if (const unsigned n = squarings ? def_integer_exponent(step) : 0; n != 0)
                 error = emit_pow(name, step, sources, n);
             else if (out_of_line(step, fast))
                 error = call_shared(name, step, sources);
