@@ -182,13 +182,18 @@ inline void ternary(Vector<Real>& result, const Vector<Real>& a, const Vector<Re
         if (has(mask, c))
             for (unsigned l = 0; l < N; ++l) result[c][l] = f(a[c][l], b[c][l], c3[c][l]);
 }
+// A scalar instruction's result: one value per lane, replicated into the channels of `mask`.
+template <typename Real>
+inline void replicate(Vector<Real>& result, unsigned mask, const Lanes<Real>& value) {
+    for (unsigned c = 0; c < 4; ++c)
+        if (has(mask, c)) result[c] = value;
+}
 // Scalar instructions: one value per lane from channel 0 of the sources, replicated.
 template <typename Real, typename F>
 inline void scalar(Vector<Real>& result, unsigned mask, F f) {
     Lanes<Real> value;
     for (unsigned l = 0; l < N; ++l) value[l] = f(l);
-    for (unsigned c = 0; c < 4; ++c)
-        if (has(mask, c)) result[c] = value;
+    replicate(result, mask, value);
 }
 
 // pow's first way, for a batch whose exponent b.x is one integer n in [1, 256] on every lane
@@ -201,8 +206,7 @@ inline void scalar(Vector<Real>& result, unsigned mask, F f) {
 inline bool pow_by_squaring(Vector<float>& result, const Vector<float>& a, unsigned n, unsigned mask) {
     FloatLanes value;
     if (!num::pow_float_integer(a[0], n, value)) return false;
-    for (unsigned c = 0; c < 4; ++c)
-        if (has(mask, c)) result[c] = value;
+    replicate(result, mask, value);
     return true;
 }
 

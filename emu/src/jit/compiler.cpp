@@ -532,9 +532,9 @@ public:
         // of times as many batches in the sample scenes (bench_1024: 850 vertices and 5.5 million
         // pixels a frame). Vertex routines spend nothing on pow's squarings and their cold blocks,
         // which cost the lighting shaders' compile more than their vertices' run time could gain.
-        inline_squarings_ = executable.version().type == isa::ShaderType::Pixel;
+        const bool inline_squarings = executable.version().type == isa::ShaderType::Pixel;
         for (const Step& step : steps) {
-            if (std::string error = emit_step(step, fast); !error.empty()) return error;
+            if (std::string error = emit_step(step, fast, inline_squarings); !error.empty()) return error;
             if (step.opcode == Opcode::TexKill) {
                 // The interpreter's stop after a texkill that killed every lane (when the batch asks).
                 llvm::Value* stop = nullptr;
@@ -653,7 +653,7 @@ private:
     // vectorized series in double are the larger part of the code of the routines that use
     // them and cost the code generator several times a call's work. Fast exp and log are short
     // float code and stay inline; fast pow and lit go out of line as exact ones do. pow with a
-    // def'd integer exponent is emit_pow()'s in pixel routines (inline_squarings_).
+    // def'd integer exponent is emit_pow()'s in pixel routines (emit_step()'s inline_squarings).
     bool out_of_line(const Step& step, bool fast) const {
         if (step.opcode == Opcode::Lit) return true;
         if (step.opcode == Opcode::Exp || step.opcode == Opcode::ExpP || step.opcode == Opcode::Log ||
@@ -734,7 +734,8 @@ private:
     // channel it did not fetch or compute, so SROA finds every value without them, and the
     // markers and their casts (4 of each a step) cost the inliner and SROA about a sixth of the
     // IR passes (alu64's pixel shader compiled in 33.4 -> 29.9-31.7 ms, the same IR).
-    std::string emit_step(const Step& step, bool fast) {
+    // inline_squarings: pow with a def'd integer exponent goes to emit_pow() (pixel routines).
+    std::string emit_step(const Step& step, bool fast, bool inline_squarings) {
         if (step.source_count > sources_.size()) return "too many sources";
         std::array<llvm::Value*, 3> sources{sources_[0], sources_[1], sources_[2]};
         for (unsigned k = 0; k < step.source_count; ++k)
@@ -753,7 +754,7 @@ private:
             const std::string name = kernel_name(step.opcode, fast);
             if (name.empty()) return {};  // as the interpreter: lowering emits nothing else
             std::string error;
-            const bool squarings = step.opcode == Opcode::Pow && inline_squarings_;
+            const bool squarings = step.opcode == Opcode::Pow && inline_squarings;
             if (const unsigned n = squarings ? def_integer_exponent(step) : 0; n != 0)
                 error = emit_pow(name, step, sources, n);
             else if (out_of_line(step, fast))
@@ -791,7 +792,6 @@ private:
     std::array<llvm::AllocaInst*, 3> call_sources_{};  // the out-of-line kernels' (call_shared)
     llvm::AllocaInst* call_result_ = nullptr;
     llvm::AllocaInst* temps_ = nullptr;  // [kTempCount x register]
-    bool inline_squarings_ = false;  // emit_pow() for pow with a def'd integer exponent
 };
 
 // Makes `function`, a kernel of the bitcode (compiled there for x86-64-v4), compile for the
