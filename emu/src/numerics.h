@@ -385,31 +385,33 @@ inline void sincos(float x, float& sine, float& cosine) {
 // half denormals.
 
 // Both roundings are branch-free (selects only), so that storing a step's result stays a
-// vectorized loop, and use float operations but for one `and` that takes the exponent: LLVM's
-// code generator analyses the known bits of every integer operation, through each step's
-// rounding, which made integer formulations cost most of the compile of an fp24 routine
-// (shader_bench jit/compile alu64 fp24: 95-99 ms with fabs/copysign and integer rounding,
-// 59-64 with these). clang compiles each to about a dozen AVX-512 instructions. Every one of
-// the 2^32 inputs gives the earlier formulations' bits (compared once by hand; Rounding.*
-// checks the definitions on a sample, every limit and ties).
+// vectorized loop, and use float operations only: LLVM's code generator analyses the known
+// bits of every integer operation, through each step's rounding, which made integer
+// formulations cost most of the compile of an fp24 routine (shader_bench jit/compile alu64
+// fp24: 95-99 ms with fabs/copysign and integer rounding, 59-64 with an `and` taking the
+// exponent; 0.83x of that with neither it nor copysign, in a slower hour 73 -> 61 ms). Every
+// one of the 2^32 inputs gives the earlier formulations' bits (compared once by hand, clang
+// and g++; Rounding.* checks the definitions on a sample, every limit and ties).
 //
-// Rounding to nearest even at the format's ulp by a float addition: for x in [2^e, 2^(e+1))
-// and m kept mantissa bits, x + 2^(e + 23 - m) (same sign) lies in a binade whose ulp is
-// 2^(e - m), so the addition rounds x there, ties to even, and subtracting 2^(e + 23 - m)
-// again is exact. The ranges are tests on |x| against the least magnitude that rounds to the
-// limit: the limit less half the ulp kept (a tie, which rounds up, its last kept bit being odd).
+// Rounding to nearest even at the format's ulp by Veltkamp's splitting: for m kept mantissa
+// bits, c = x (2^(23 - m) + 1) and c - (c - x) is x rounded to m + 1 significant bits, ties to
+// even (no overflow or underflow for the normal ranges below: |c| < 2^72). The ranges are
+// tests on |x| against the least magnitude that rounds to the limit: the limit less half the
+// ulp kept (a tie, which rounds up, its last kept bit being odd).
 
 namespace detail {
-// 2^(e + 23 - kept) with x's sign, e the exponent of a normal x.
+// x rounded to `kept` mantissa bits (Veltkamp's splitting), for a normal x whose product stays finite.
 template <int kept>
-inline float rounding_shift(float x) {
-    return std::bit_cast<float>(std::bit_cast<uint32_t>(x) & 0xFF800000u) * static_cast<float>(1u << (23 - kept));
+inline float round_mantissa(float x) {
+    const float split = x * static_cast<float>((1u << (23 - kept)) + 1u);
+    return split - (split - x);
 }
 // What lies beyond a format's largest value (`magnitude` = |x| >= its limit): infinity with
-// x's sign, or x itself where it is an infinity or a NaN (its payload kept).
+// x's sign (x * inf for a finite nonzero x), or x itself where it is an infinity or a NaN (its
+// payload kept).
 inline float beyond_range(float x, float magnitude) {
     const float inf = kInfinity<float>;
-    return magnitude < inf ? std::copysign(inf, x) : x;
+    return magnitude < inf ? x * inf : x;
 }
 }  // namespace detail
 
@@ -420,9 +422,9 @@ inline float round_to_fp24(float x) {
     // Rounded, 2^-62 from the float of bits 0x207FFFC0 on, 2^64 from that of 0x5F7FFFC0.
     const float least = std::bit_cast<float>(0x207FFFC0u), overflow = std::bit_cast<float>(0x5F7FFFC0u);
     const bool in_range = magnitude >= least && magnitude < overflow;  // (false for NaN)
-    const float shift = detail::rounding_shift<16>(x);
-    const float outside = !(magnitude < overflow) ? detail::beyond_range(x, magnitude) : std::copysign(0.0f, x);
-    return in_range ? (x + shift) - shift : outside;
+    // (Below the range x is finite: x * 0 is 0 with x's sign.)
+    const float outside = !(magnitude < overflow) ? detail::beyond_range(x, magnitude) : x * 0.0f;
+    return in_range ? detail::round_mantissa<16>(x) : outside;
 }
 
 // fp16 = IEEE binary16 (s10e5): round to nearest even, max 65504, denormals down to 2^-24.
@@ -432,12 +434,11 @@ inline float round_to_fp16(float x) {
     // 65536, ties go to even: overflow.
     const float overflow = 65520.0f;
     const bool normal = magnitude >= 0x1p-14f && magnitude < overflow;
-    const float shift = detail::rounding_shift<10>(x);
     // Half denormals are multiples of 2^-24; 0.5 has exactly that spacing, so adding and
     // removing it rounds to the nearest multiple (ties to even).
     const float denormal = std::copysign((magnitude + 0.5f) - 0.5f, x);
     const float outside = !(magnitude < overflow) ? detail::beyond_range(x, magnitude) : denormal;
-    return normal ? (x + shift) - shift : outside;
+    return normal ? detail::round_mantissa<10>(x) : outside;
 }
 
 // The rounding a step's result gets, decided once per step when a shader is lowered.
