@@ -1,10 +1,12 @@
 // Lowering: a Shader plus the static flow constants of one draw -> a straight list of steps.
 // `if b#` blocks are taken or dropped, `rep`/`loop` bodies are repeated (aL takes its value for
 // each copy, so c[aL + n] becomes a fixed constant), `call`/`callnz` bodies are inlined, matrix
-// macros become dot products, and steps no output needs are removed (dead_code.cpp).
+// macros become dot products, steps no output needs are removed (dead_code.cpp), and so are
+// roundings that cannot change a value (exact_roundings.cpp).
 #include <string>
 
 #include "dead_code.h"
+#include "exact_roundings.h"
 #include "numerics.h"
 #include "sm2/emu/engine.h"
 
@@ -50,6 +52,7 @@ public:
         if (!options_.keep_dead_code) remove_dead_steps(steps_, options_.outputs_read);
         std::vector<std::pair<unsigned, std::array<float, 4>>> defs;
         for (const auto& [index, value] : shader_.definitions().floats) defs.emplace_back(index, value);
+        drop_exact_roundings(steps_, defs);
         const Precision precision = options_.precision.precision;
         const Transcendentals transcendentals =
             precision == Precision::Fp64 ? Transcendentals::Exact : options_.precision.transcendentals;
