@@ -135,11 +135,11 @@ float fp16_by_definition(float x) {
     return std::copysign(static_cast<float>(rounded), x);
 }
 
-// numerics.h's roundings, which work on the bits, against their definitions: a spread over
-// every exponent and sign, every tie of a sample (the dropped bits exactly half), and the
-// floats around each limit (2^-62 and 2^64; half's 2^-24, 2^-14, 65504 and 65520), NaN
-// payloads and infinities kept. (All 2^32 floats were compared once by hand with the float
-// formulation these replaced.)
+// numerics.h's roundings (float operations: Veltkamp's splitting and compares on |x|) against
+// their definitions: a spread over every exponent and sign, every tie of a sample (the dropped
+// bits exactly half), and the floats around each limit (2^-62 and 2^64; half's 2^-24, 2^-14,
+// 65504 and 65520), NaN payloads and infinities kept. (All 2^32 floats were compared by hand
+// with each formulation these replaced.)
 TEST(Rounding, Fp24AndFp16AreTheirDefinitionsBitForBit) {
     std::vector<uint32_t> inputs;
     std::mt19937 random(7);
