@@ -80,13 +80,16 @@ inline double log2_in_double(float a) {
     // p(y) = sum 2 / (2k + 1) y^k, y = s^2, k = 0..9, by Estrin's scheme: pairs of terms, then
     // pairs of pairs, so that the longest chain of dependent operations is 4 multiply-adds, not
     // Horner's 9 (the 16 lanes of a batch wait on that chain; the value differs from Horner's
-    // in the last bits of the double alone).
+    // in the last bits of the double alone). Each multiply-add fused (std::fma, one rounding):
+    // a 512-bit operation fewer each, and the floats of exp, log and pow those of the unfused
+    // series (docs/numerics.md: every float input of exp and log, a sample of pow's).
     const double y = s * s, y2 = y * y, y4 = y2 * y2, y8 = y4 * y4;
-    const double a0 = 2.0 + (2.0 / 3.0) * y, a1 = 2.0 / 5.0 + (2.0 / 7.0) * y, a2 = 2.0 / 9.0 + (2.0 / 11.0) * y;
-    const double a3 = 2.0 / 13.0 + (2.0 / 15.0) * y, a4 = 2.0 / 17.0 + (2.0 / 19.0) * y;
-    const double b0 = a0 + a1 * y2, b1 = a2 + a3 * y2;
-    const double p = (b0 + b1 * y4) + a4 * y8;
-    return e + (p * s) * 1.4426950408889634;
+    const double a0 = std::fma(2.0 / 3.0, y, 2.0), a1 = std::fma(2.0 / 7.0, y, 2.0 / 5.0);
+    const double a2 = std::fma(2.0 / 11.0, y, 2.0 / 9.0), a3 = std::fma(2.0 / 15.0, y, 2.0 / 13.0);
+    const double a4 = std::fma(2.0 / 19.0, y, 2.0 / 17.0);
+    const double b0 = std::fma(a1, y2, a0), b1 = std::fma(a3, y2, a2);
+    const double p = std::fma(a4, y8, std::fma(b1, y4, b0));
+    return std::fma(p * s, 1.4426950408889634, e);
 }
 
 // 2^t rounded once to float: t = n + f with n an integer and |f| <= 1/2, 2^f = e^(f ln 2) by its
@@ -102,14 +105,14 @@ inline float exp2_rounded_to_float(double t) {
     const double shifted = t + 6755399441055744.0;
     const double n = shifted - 6755399441055744.0;
     const double x = (t - n) * 0.6931471805599453;
-    // q(x) = sum x^k / k!, k = 0..12, by Estrin's scheme (as log2_in_double()'s series): 4
-    // dependent multiply-adds after the powers, not Horner's 12.
+    // q(x) = sum x^k / k!, k = 0..12, by Estrin's scheme (as log2_in_double()'s series, fused
+    // likewise): 4 dependent multiply-adds after the powers, not Horner's 12.
     const double x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
-    const double a0 = 1.0 + x, a1 = 0.5 + (1.0 / 6.0) * x, a2 = 1.0 / 24.0 + (1.0 / 120.0) * x;
-    const double a3 = 1.0 / 720.0 + (1.0 / 5040.0) * x, a4 = 1.0 / 40320.0 + (1.0 / 362880.0) * x;
-    const double a5 = 1.0 / 3628800.0 + (1.0 / 39916800.0) * x;
-    const double b0 = a0 + a1 * x2, b1 = a2 + a3 * x2, b2 = a4 + a5 * x2;
-    const double q = (b0 + b1 * x4) + (b2 + (1.0 / 479001600.0) * x4) * x8;
+    const double a0 = 1.0 + x, a1 = std::fma(1.0 / 6.0, x, 0.5), a2 = std::fma(1.0 / 120.0, x, 1.0 / 24.0);
+    const double a3 = std::fma(1.0 / 5040.0, x, 1.0 / 720.0), a4 = std::fma(1.0 / 362880.0, x, 1.0 / 40320.0);
+    const double a5 = std::fma(1.0 / 39916800.0, x, 1.0 / 3628800.0);
+    const double b0 = std::fma(a1, x2, a0), b1 = std::fma(a3, x2, a2), b2 = std::fma(a5, x2, a4);
+    const double q = std::fma(std::fma(1.0 / 479001600.0, x4, b2), x8, std::fma(b1, x4, b0));
     const double scale = std::bit_cast<double>((std::bit_cast<uint64_t>(shifted) + 1023u) << 52);
     return static_cast<float>(q * scale);
 }
