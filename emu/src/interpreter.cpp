@@ -24,7 +24,7 @@ using isa::Opcode;
 // The exact exp, log and pow of floats (and lit's power): numerics.h's series in double of
 // fused multiply-adds, cloned for x86-64-v4 and v3, where std::fma is one instruction and the
 // lane loops vectorize. The baseline clone, for CPUs without FMA, calls the C library's fma for
-// each (the same bits: a fused multiply-add has one result), about four times as slow.
+// each (the same bits: a fused multiply-add has one result): 4x the unfused series' time.
 // (GCC: flatten, so that every kernel is inlined into each clone and compiled for its
 // instruction set. Clang refuses flatten beside target_clones, and its clones call pow's and
 // lit's kernels as compiled for the baseline: the same bits, the C library's fma.)
