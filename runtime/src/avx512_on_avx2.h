@@ -95,6 +95,7 @@
 #undef _mm512_mullo_epi32
 #undef _mm512_or_ps
 #undef _mm512_or_si512
+#undef _mm512_permutex2var_epi16
 #undef _mm512_permutex2var_epi32
 #undef _mm512_permutex2var_epi64
 #undef _mm512_permutex2var_ps
@@ -692,6 +693,16 @@ SM2_AVX2_INLINE Ints512 _mm512_maskz_permutex2var_epi32(__mmask16 k, Ints512 a, 
 SM2_AVX2_INLINE Ints512 _mm512_alignr_epi32(Ints512 a, Ints512 b, int shift) {
     const Ints512 lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
     return _mm512_permutex2var_epi32(b, _mm512_add_epi32(lane, _mm512_set1_epi32(shift & 15)), a);
+}
+// 16-bit lanes: lane idx & 63 of the 64 lanes of {a, b}, one by one (the kernels take their
+// 16-bit permutes in the AVX-512 instance alone, kOneRegister).
+SM2_AVX2_INLINE Ints512 _mm512_permutex2var_epi16(Ints512 a, Ints512 idx, Ints512 b) {
+    alignas(32) uint16_t table[64], index[32], out[32];
+    _mm512_store_si512(table, a);
+    _mm512_store_si512(table + 32, b);
+    _mm512_store_si512(index, idx);
+    for (unsigned l = 0; l < 32; ++l) out[l] = table[index[l] & 63u];
+    return _mm512_load_si512(out);
 }
 // The 32-bit lanes 2j and 2j + 1 of each 64-bit lane index j (`lanes`: j's mask, 7 or 15), by
 // 64-bit shifts, which the compiler folds for a constant index (it does not fold VPERMD).

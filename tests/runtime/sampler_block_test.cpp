@@ -1003,6 +1003,70 @@ TEST(SamplerBlockPath, BilinearLookupsOfScreenAlignedBatchesReadTheirTexelWindow
     });
 }
 
+// Trilinear volume lookups of 8x2-pixel batches stepping through the volume along a tilted
+// direction, as slices drawn across a volume read it, at 0.15 to 1.3 texels a pixel, from
+// every position of the level and past its faces: the AVX-512 instance reads the 2-byte texels
+// of such batches from a 4x4x4 window (block_volume_window), moved inside the level, where
+// every tap inside the level lies in it, and the others (larger steps, levels under 4 texels
+// deep, taps clamped or wrapped away from the rest) by gathers; both must give the per-lane
+// path's bits, under BORDER (transparent and not), CLAMP and WRAP.
+TEST(SamplerBlockPath, TrilinearVolumeLookupsOfSliceBatchesReadTheirTexelWindow) {
+    std::mt19937 rng(20261205);
+    struct Case {
+        Format format;
+        uint32_t w, h, d;
+    };
+    const Case cases[] = {{Format::A4R4G4B4, 8, 8, 8}, {Format::R5G6B5, 7, 5, 6}, {Format::A1R5G5B5, 8, 4, 3}};
+    unsigned compared = 0;
+    for (const Case& c : cases) {
+        const Texture texture = random_texture(rng, c.format, c.w, c.h, 1, c.d);
+        for (const bool avx2 : forced_avx2_choices())
+            for (const TextureAddress mode : {TextureAddress::Border, TextureAddress::Clamp, TextureAddress::Wrap})
+                for (const uint32_t border : {0u, 0x80FF4020u}) {
+                    if (mode != TextureAddress::Border && border != 0) continue;
+                    TextureSampler block, lanes;
+                    block.set_texture(0, &texture);
+                    block.set_block_avx2(avx2);
+                    lanes.set_texture(0, &texture);
+                    lanes.set_block_path(false);
+                    SamplerState state;
+                    state.address_u = state.address_v = state.address_w = mode;
+                    state.border_color = border;
+                    state.mag_filter = state.min_filter = TextureFilter::Linear;
+                    state.mip_filter = TextureFilter::None;
+                    for (TextureSampler* s : {&block, &lanes}) s->set_state(0, state);
+                    block.prepare();
+                    if (!block.block_path_applies(0)) GTEST_SKIP() << "no block path on this CPU";
+                    for (const float step : {0.15f, 0.4f, 0.75f, 1.3f})
+                        for (int z0 = -2; z0 < static_cast<int>(c.d) + 2; ++z0)
+                            for (int y0 = -2; y0 < static_cast<int>(c.h) + 2; ++y0)
+                                for (int x0 = -2; x0 < static_cast<int>(c.w) + 2; ++x0) {
+                                    std::array<emu::FloatLanes, 4> coords{};
+                                    std::uniform_real_distribution<float> fraction(0.0f, 1.0f);
+                                    const float u = static_cast<float>(x0) + fraction(rng), v = static_cast<float>(y0) + fraction(rng);
+                                    const float w = static_cast<float>(z0) + fraction(rng);
+                                    for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+                                        // Pixel (px, py) of the batch: x across the volume's x and
+                                        // z, y across its y and x (a slice turned about two axes).
+                                        const float px = static_cast<float>(2 * (l / 4) + (l & 1u));
+                                        const float py = static_cast<float>((l >> 1) & 1u);
+                                        coords[0][l] = (u + step * (0.8f * px - 0.3f * py)) / static_cast<float>(c.w);
+                                        coords[1][l] = (v + step * (0.2f * px + 0.9f * py)) / static_cast<float>(c.h);
+                                        coords[2][l] = (w + step * (-0.55f * px + 0.3f * py)) / static_cast<float>(c.d);
+                                    }
+                                    emu::TextureRequest request;
+                                    request.coordinates = &coords;
+                                    ASSERT_TRUE(same_texels(block, lanes, request, false))
+                                        << format_info(c.format)->name << " step " << step << " at " << x0 << ", " << y0
+                                        << ", " << z0 << " address " << static_cast<int>(mode) << " border 0x" << std::hex
+                                        << border << std::dec << (avx2 ? " (AVX2 instance)" : "");
+                                    ++compared;
+                                }
+                }
+    }
+    EXPECT_GT(compared, 10000u);
+}
+
 // A texture of `count` texels, `width` a row, texel v holding texel(v) in its bytes, POINT-
 // sampled at every texel centre (the block path's instances where the CPU runs one): channel `channel`
 // of texel v must read with the bits expected(v).
@@ -1178,6 +1242,25 @@ SM2_AVX2 void expect_every_bilinear_sum_divides_exactly(uint32_t bits) {
 TEST(SamplerBlockPath, EveryFixed8BilinearSumDividesAsTheDivisionInTheAvx2Instance) {
     if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 and FMA on this CPU";
     for (const uint32_t bits : {8u, 6u, 5u, 4u, 1u}) expect_every_bilinear_sum_divides_exactly(bits);
+}
+
+// The AVX2 stand-in for VPERMT2W (which block_volume_window() names; the AVX2 instance never
+// takes that path): each 16-bit index's low 6 bits choose one of the 64 words of {a, b}.
+SM2_AVX2 void expect_sixteen_bit_permutes_pick_their_words() {
+    alignas(64) uint16_t table[64], index[32], got[32];
+    for (unsigned i = 0; i < 64; ++i) table[i] = static_cast<uint16_t>(0x1000 + 7 * i);
+    std::mt19937 rng(5);
+    for (unsigned round = 0; round < 100; ++round) {
+        for (auto& i : index) i = static_cast<uint16_t>(rng());
+        _mm512_store_si512(got, _mm512_permutex2var_epi16(_mm512_load_si512(table), _mm512_load_si512(index),
+                                                          _mm512_load_si512(table + 32)));
+        for (unsigned l = 0; l < 32; ++l) ASSERT_EQ(got[l], 0x1000 + 7 * (index[l] & 63u)) << "index " << index[l];
+    }
+}
+
+TEST(SamplerBlockPath, SixteenBitPermutesInTheAvx2InstancePickTheirWords) {
+    if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 and FMA on this CPU";
+    expect_sixteen_bit_permutes_pick_their_words();
 }
 
 }  // namespace
