@@ -1006,17 +1006,18 @@ TEST(SamplerBlockPath, BilinearLookupsOfScreenAlignedBatchesReadTheirTexelWindow
 // Trilinear volume lookups of 8x2-pixel batches stepping through the volume along a tilted
 // direction, as slices drawn across a volume read it, at 0.15 to 1.3 texels a pixel, from
 // every position of the level and past its faces: the AVX-512 instance reads the 2-byte texels
-// of such batches from a 4x4x4 window (block_volume_window), moved inside the level, where
-// every tap inside the level lies in it, and the others (larger steps, levels under 4 texels
-// deep, taps clamped or wrapped away from the rest) by gathers; both must give the per-lane
-// path's bits, under BORDER (transparent and not), CLAMP and WRAP.
+// of such batches from a 4x4x4 window (block_volume_window), moved inside the level, where every
+// tap inside the level lies in it, and the others (larger steps, levels under 4 texels deep,
+// taps clamped or wrapped away from the rest, 1-byte texels) by gathers; both must give the
+// per-lane path's bits, under BORDER (transparent and not), CLAMP and WRAP.
 TEST(SamplerBlockPath, TrilinearVolumeLookupsOfSliceBatchesReadTheirTexelWindow) {
     std::mt19937 rng(20261205);
     struct Case {
         Format format;
         uint32_t w, h, d;
     };
-    const Case cases[] = {{Format::A4R4G4B4, 8, 8, 8}, {Format::R5G6B5, 7, 5, 6}, {Format::A1R5G5B5, 8, 4, 3}};
+    const Case cases[] = {{Format::A4R4G4B4, 8, 8, 8}, {Format::R5G6B5, 7, 5, 6}, {Format::A1R5G5B5, 8, 4, 3},
+                          {Format::L8, 8, 6, 5}, {Format::A8, 5, 4, 4}};
     unsigned compared = 0;
     for (const Case& c : cases) {
         const Texture texture = random_texture(rng, c.format, c.w, c.h, 1, c.d);
