@@ -78,6 +78,12 @@ SamplerState random_state(std::mt19937& rng) {
     return s;
 }
 
+// A format and size for random_texture() (d = 0: a 2D texture).
+struct TextureCase {
+    Format format;
+    uint32_t w, h, d;
+};
+
 // `block` and `lanes` on `texture` at stage 0: the first with the block path the CPU allows, the
 // second with the per-lane path (the reference).
 void bind_block_and_lanes(TextureSampler& block, TextureSampler& lanes, const Texture& texture) {
@@ -780,15 +786,11 @@ TEST(SamplerBlockPath, AlphaGateChangesNothingButTheColourOfTransparentLookups) 
 // AddressSanitizer (scripts/test.sh's second pass) a word past the allocation fails the test.
 TEST(SamplerBlockPath, NarrowTexelsAtTheStoragesEndMatchThePerLanePath) {
     std::mt19937 rng(20261202);
-    struct Case {
-        Format format;
-        uint32_t w, h, d;
-    };
-    const Case cases[] = {{Format::L8, 64, 1, 0},      {Format::A8, 32, 2, 0},     {Format::A8L8, 32, 1, 0},
+    const TextureCase cases[] = {{Format::L8, 64, 1, 0},      {Format::A8, 32, 2, 0},     {Format::A8L8, 32, 1, 0},
                           {Format::A4R4G4B4, 32, 2, 0}, {Format::L8, 4, 4, 4},      {Format::R5G6B5, 4, 2, 4},
                           {Format::A8L8, 2, 4, 4}};
     unsigned compared = 0;
-    for (const Case& t : cases) {
+    for (const TextureCase& t : cases) {
         const Texture texture = random_texture(rng, t.format, t.w, t.h, 1, t.d);
         const auto& level = texture.surface(0).bytes();
         ASSERT_EQ(level.size() % 64, 0u) << "the level must end on a line for the test to mean anything";
@@ -1012,24 +1014,18 @@ TEST(SamplerBlockPath, BilinearLookupsOfScreenAlignedBatchesReadTheirTexelWindow
 // per-lane path's bits, under BORDER (transparent and not), CLAMP and WRAP.
 TEST(SamplerBlockPath, TrilinearVolumeLookupsOfSliceBatchesReadTheirTexelWindow) {
     std::mt19937 rng(20261205);
-    struct Case {
-        Format format;
-        uint32_t w, h, d;
-    };
-    const Case cases[] = {{Format::A4R4G4B4, 8, 8, 8}, {Format::R5G6B5, 7, 5, 6}, {Format::A1R5G5B5, 8, 4, 3},
+    const TextureCase cases[] = {{Format::A4R4G4B4, 8, 8, 8}, {Format::R5G6B5, 7, 5, 6}, {Format::A1R5G5B5, 8, 4, 3},
                           {Format::L8, 8, 6, 5}, {Format::A8, 5, 4, 4}};
     unsigned compared = 0;
-    for (const Case& c : cases) {
+    for (const TextureCase& c : cases) {
         const Texture texture = random_texture(rng, c.format, c.w, c.h, 1, c.d);
         for (const bool avx2 : forced_avx2_choices())
             for (const TextureAddress mode : {TextureAddress::Border, TextureAddress::Clamp, TextureAddress::Wrap})
                 for (const uint32_t border : {0u, 0x80FF4020u}) {
                     if (mode != TextureAddress::Border && border != 0) continue;
                     TextureSampler block, lanes;
-                    block.set_texture(0, &texture);
+                    bind_block_and_lanes(block, lanes, texture);
                     block.set_block_avx2(avx2);
-                    lanes.set_texture(0, &texture);
-                    lanes.set_block_path(false);
                     SamplerState state;
                     state.address_u = state.address_v = state.address_w = mode;
                     state.border_color = border;
