@@ -1040,7 +1040,8 @@ TEST(SamplerBlockPath, TrilinearVolumeLookupsOfSliceBatchesReadTheirTexelWindow)
                                 for (int x0 = -2; x0 < static_cast<int>(c.w) + 2; ++x0) {
                                     std::array<emu::FloatLanes, 4> coords{};
                                     std::uniform_real_distribution<float> fraction(0.0f, 1.0f);
-                                    const float u = static_cast<float>(x0) + fraction(rng), v = static_cast<float>(y0) + fraction(rng);
+                                    const float u = static_cast<float>(x0) + fraction(rng);
+                                    const float v = static_cast<float>(y0) + fraction(rng);
                                     const float w = static_cast<float>(z0) + fraction(rng);
                                     for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
                                         // Pixel (px, py) of the batch: x across the volume's x and
@@ -1054,9 +1055,9 @@ TEST(SamplerBlockPath, TrilinearVolumeLookupsOfSliceBatchesReadTheirTexelWindow)
                                     emu::TextureRequest request;
                                     request.coordinates = &coords;
                                     ASSERT_TRUE(same_texels(block, lanes, request, false))
-                                        << format_info(c.format)->name << " step " << step << " at " << x0 << ", " << y0
-                                        << ", " << z0 << " address " << static_cast<int>(mode) << " border 0x" << std::hex
-                                        << border << std::dec << (avx2 ? " (AVX2 instance)" : "");
+                                        << format_info(c.format)->name << " step " << step << " at " << x0 << ", "
+                                        << y0 << ", " << z0 << " address " << static_cast<int>(mode) << " border 0x"
+                                        << std::hex << border << std::dec << (avx2 ? " (AVX2 instance)" : "");
                                     ++compared;
                                 }
                 }
