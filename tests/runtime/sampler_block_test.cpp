@@ -786,9 +786,9 @@ TEST(SamplerBlockPath, AlphaGateChangesNothingButTheColourOfTransparentLookups) 
 // AddressSanitizer (scripts/test.sh's second pass) a word past the allocation fails the test.
 TEST(SamplerBlockPath, NarrowTexelsAtTheStoragesEndMatchThePerLanePath) {
     std::mt19937 rng(20261202);
-    const TextureCase cases[] = {{Format::L8, 64, 1, 0},      {Format::A8, 32, 2, 0},     {Format::A8L8, 32, 1, 0},
-                          {Format::A4R4G4B4, 32, 2, 0}, {Format::L8, 4, 4, 4},      {Format::R5G6B5, 4, 2, 4},
-                          {Format::A8L8, 2, 4, 4}};
+    const TextureCase cases[] = {{Format::L8, 64, 1, 0},       {Format::A8, 32, 2, 0}, {Format::A8L8, 32, 1, 0},
+                                 {Format::A4R4G4B4, 32, 2, 0}, {Format::L8, 4, 4, 4},  {Format::R5G6B5, 4, 2, 4},
+                                 {Format::A8L8, 2, 4, 4}};
     unsigned compared = 0;
     for (const TextureCase& t : cases) {
         const Texture texture = random_texture(rng, t.format, t.w, t.h, 1, t.d);
@@ -1015,7 +1015,8 @@ TEST(SamplerBlockPath, BilinearLookupsOfScreenAlignedBatchesReadTheirTexelWindow
 TEST(SamplerBlockPath, TrilinearVolumeLookupsOfSliceBatchesReadTheirTexelWindow) {
     std::mt19937 rng(20261205);
     const TextureCase cases[] = {{Format::A4R4G4B4, 8, 8, 8}, {Format::R5G6B5, 7, 5, 6}, {Format::A1R5G5B5, 8, 4, 3},
-                          {Format::L8, 8, 6, 5}, {Format::A8, 5, 4, 4}};
+                                 {Format::L8, 8, 6, 5}, {Format::A8, 5, 4, 4}};
+    std::uniform_real_distribution<float> fraction(0.0f, 1.0f);
     unsigned compared = 0;
     for (const TextureCase& c : cases) {
         const Texture texture = random_texture(rng, c.format, c.w, c.h, 1, c.d);
@@ -1039,7 +1040,6 @@ TEST(SamplerBlockPath, TrilinearVolumeLookupsOfSliceBatchesReadTheirTexelWindow)
                             for (int y0 = -2; y0 < static_cast<int>(c.h) + 2; ++y0)
                                 for (int x0 = -2; x0 < static_cast<int>(c.w) + 2; ++x0) {
                                     std::array<emu::FloatLanes, 4> coords{};
-                                    std::uniform_real_distribution<float> fraction(0.0f, 1.0f);
                                     const float u = static_cast<float>(x0) + fraction(rng);
                                     const float v = static_cast<float>(y0) + fraction(rng);
                                     const float w = static_cast<float>(z0) + fraction(rng);
