@@ -977,15 +977,15 @@ TEST(SamplerBlockPath, PointLookupsOfScreenAlignedBatchesReadTheirTexelRows) {
 
 // Bilinear lookups of 8x2-pixel batches at pixel steps of 0.5 to 2.5 texels, forwards and
 // mirrored, screen-aligned and sheared (v growing along the batch's rows too), at every column
-// and row of the level and past its edges: the AVX-512 instance reads
-// the texel pairs of such batches from a window of three rows (block_window_pairs), clipped at
-// the level's right edge and last rows, and the others by gathers; both must give the per-lane
-// path's bits.
+// and row of the level and past its edges: the AVX-512 instance reads the texel pairs of such
+// batches from a window of four rows (block_window_pairs; steps of 1.8 and 2 put a lane's taps
+// two rows below lane 0's), clipped at the level's right edge and last rows, and the others by
+// loads; both must give the per-lane path's bits.
 TEST(SamplerBlockPath, BilinearLookupsOfScreenAlignedBatchesReadTheirTexelWindow) {
     std::mt19937 rng(20261202);
     const Texture texture = random_texture(rng, Format::A8R8G8B8, 64, 32, 1);  // powers of two: WRAP too
     for_each_level_setup(texture, TextureFilter::Linear, [&](TextureSampler& block, TextureSampler& lanes, const std::string& label) {
-        for (const float step : {0.5f, 1.0f, 1.25f, 1.8f, -1.0f, 2.5f})
+        for (const float step : {0.5f, 1.0f, 1.25f, 1.8f, 2.0f, -1.0f, 2.5f})
             for (const float shear : {0.0f, 0.3f})
                 for (int y0 = -3; y0 < 34; y0 += 3)
                     for (int x0 = -3; x0 < 66; ++x0) {
