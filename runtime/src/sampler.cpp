@@ -201,7 +201,7 @@ struct BlockChannel {
     unsigned bits = 0;   // the field's width (Snorm: where its sign bit is)
     uint32_t mask = 0;   // 2^n - 1 for Unorm
     float max = 1.0f;    // float(2^n - 1); Snorm: float(2^(n-1) - 1)
-    float reciprocal = 1.0f;  // 1 / max (unorm8::quotient_by())
+    SplitReciprocal reciprocal;  // of max (unorm8::quotient_by())
     // Unorm fields of up to 5 bits: (v & mask) / max for every 5-bit v, so that a decode is one
     // permute by the bits from the field up (the bits above it index copies of the same values)
     // instead of a mask, a conversion and a corrected quotient.
@@ -783,7 +783,7 @@ std::optional<BlockFormat> block_format(Format f) {
             b.shift = ch.shift % 32;
             b.mask = (1u << ch.bits) - 1u;
             b.max = static_cast<float>(b.mask);
-            b.reciprocal = 1.0f / b.max;
+            b.reciprocal = split_reciprocal(b.max);
             if (b.mask < b.decoded.size())
                 for (uint32_t v = 0; v < b.decoded.size(); ++v) b.decoded[v] = static_cast<float>(v & b.mask) / b.max;
             break;
@@ -794,7 +794,7 @@ std::optional<BlockFormat> block_format(Format f) {
             b.shift = ch.shift % 32;
             b.bits = ch.bits;
             b.max = static_cast<float>((1u << (ch.bits - 1)) - 1u);
-            b.reciprocal = 1.0f / b.max;
+            b.reciprocal = split_reciprocal(b.max);
             break;
         case layout::Type::Half:
             if (ch.bits != 16 || ch.shift % 32 + 16 > 32) return std::nullopt;

@@ -47,6 +47,24 @@ inline bool cpu_has_avx2() {
     return has;
 }
 
+// The reciprocal of a quotient v / max split as high = fl(1 / max) and low = fl(1 / max -
+// high), so that v high + fl(v low), rounded once (unorm8::quotient_by()), is the correctly
+// rounded v / max without a division, for max = 2^n - 1 (n <= 16) or a power of two times one,
+// and v an integer float (the fields, the fixed8 filter's sums): the sum lies within 2^-47 of
+// v / max relative to it (low's rounding and v low's each 2^-48), nearer than such a quotient
+// lies to any rounding midpoint. sampler_block_test checks every field value of the formats'
+// widths and every fixed8 sum of 1 to 10 bits against IEEE division; a one-off program checked
+// every integer float up to max * 65536 for n = 1 to 16. `scale`, a power of two, multiplies
+// the result exactly (both parts scaled alike).
+struct SplitReciprocal {
+    float high = 1.0f, low = 0.0f;
+};
+constexpr SplitReciprocal split_reciprocal(double max, double scale = 1.0) {
+    const double r = scale / max;
+    const auto high = static_cast<float>(r);
+    return {high, static_cast<float>(r - static_cast<double>(high))};
+}
+
 }  // namespace sm2::runtime
 
 namespace sm2::runtime::avx512 {

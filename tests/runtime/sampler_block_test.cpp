@@ -1114,8 +1114,9 @@ void expect_every_texel(Format format, uint32_t count, uint32_t width, unsigned 
     }
 }
 
-// The block path decodes UNORM fields without a division (a reciprocal product corrected by its
-// residual): every value of a field must read exactly v / (2^n - 1) as IEEE division gives it.
+// The block path decodes UNORM fields without a division (the product by a reciprocal split in
+// two parts, unorm8::quotient_by()): every value of a field must read exactly v / (2^n - 1) as
+// IEEE division gives it.
 void expect_every_field_value(Format format, unsigned bits, unsigned shift, unsigned channel) {
     const uint32_t count = 1u << bits;
     const float max = static_cast<float>(count - 1);
@@ -1179,8 +1180,9 @@ TEST(SamplerBlockPath, EverySixteenBitFieldDecodesAsTheDivision) {
 }
 
 // The exact bilinear sums S of fixed8 filtering (an integer below 2^24 for fields of n <= 8
-// bits) become S / (max * 65536) through unorm8::quotient with the 2^-16 folded into its
-// constants: every S of every field width must give IEEE division's float, bit for bit.
+// bits; for A2B10G10R10's 10-bit fields the float nearest it) become S / (max * 65536) through
+// unorm8::quotient with the 2^-16 folded into its constants: every S of every field width must
+// give IEEE division's float, bit for bit.
 // (GCC 12's AVX-512 headers trip -Wuninitialized on their own _mm512_undefined_*() self-init.)
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
@@ -1208,7 +1210,7 @@ SM2_AVX512 void expect_every_bilinear_sum_divides_exactly(uint32_t bits) {
 
 TEST(SamplerBlockPath, EveryFixed8BilinearSumDividesAsTheDivision) {
     if (!cpu_has_avx512()) GTEST_SKIP() << "no AVX-512 on this CPU";
-    for (const uint32_t bits : {8u, 6u, 5u, 4u, 1u}) expect_every_bilinear_sum_divides_exactly(bits);
+    for (const uint32_t bits : {10u, 8u, 6u, 5u, 4u, 2u, 1u}) expect_every_bilinear_sum_divides_exactly(bits);
 }
 
 }  // namespace
@@ -1239,7 +1241,7 @@ SM2_AVX2 void expect_every_bilinear_sum_divides_exactly(uint32_t bits) {
 
 TEST(SamplerBlockPath, EveryFixed8BilinearSumDividesAsTheDivisionInTheAvx2Instance) {
     if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 and FMA on this CPU";
-    for (const uint32_t bits : {8u, 6u, 5u, 4u, 1u}) expect_every_bilinear_sum_divides_exactly(bits);
+    for (const uint32_t bits : {10u, 8u, 6u, 5u, 4u, 2u, 1u}) expect_every_bilinear_sum_divides_exactly(bits);
 }
 
 // The AVX2 stand-in for VPERMT2W (which block_volume_window() names; the AVX2 instance never
