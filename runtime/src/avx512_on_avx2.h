@@ -838,6 +838,18 @@ SM2_AVX2_INLINE Ints512 lanes_select_epi32(Ints512 src, LaneSet s, Ints512 a) {
     return _mm512_castps_si512(lanes_select_ps(_mm512_castsi512_ps(src), s, _mm512_castsi512_ps(a)));
 }
 
+// unorm8_avx512.h's floor_of_fmadd() for c = 0.5 (unorm8::encode_field()'s) and |a b + c| <
+// 2^22, without embedded rounding: t = fl(a b + c) by one FMA, k = floor(t). Rounding is
+// monotonic and the integers near a b + c are floats, so k is floor(a b + c) or one more, the
+// latter only where t rounded up onto the integer k; then the residual fl(a b + (c - k)) (c - k
+// exact, one rounding, which keeps the sign of a nonzero value) is negative, and its sign bit
+// takes 1 off. (A zero residual is +0: a b + c = k exactly.)
+SM2_AVX2_INLINE Ints512 floor_of_fmadd(Floats512 a, Floats512 b, Floats512 c) {
+    const Floats512 k = _mm512_roundscale_ps(_mm512_fmadd_ps(a, b, c), _MM_FROUND_TO_NEG_INF);
+    const Floats512 residual = _mm512_fmadd_ps(a, b, _mm512_sub_ps(c, k));
+    return _mm512_add_epi32(_mm512_cvttps_epi32(k), _mm512_srai_epi32(_mm512_castps_si512(residual), 31));
+}
+
 // unorm8_avx512.h's conversions, for the AVX2 instances.
 #define SM2_BLOCK SM2_AVX2
 namespace unorm8 {

@@ -105,6 +105,16 @@ SM2_AVX512 __attribute__((always_inline)) inline Ints512 lanes_select_epi32(Ints
     return _mm512_mask_mov_epi32(src, s, a);
 }
 
+// floor(a b + c) as integers, exactly, where |a b + c| < 2^22 (unorm8::encode_field()): the FMA
+// rounded toward -inf gives a float in [floor(y), y] for y = a b + c (floor(y), an integer
+// below 2^24, is a float), whose conversion rounded toward -inf is floor(y). Two instructions
+// with embedded rounding (the AVX2 instance, without it, corrects a rounded FMA by its
+// residual: five more).
+SM2_AVX512 __attribute__((always_inline)) inline Ints512 floor_of_fmadd(Floats512 a, Floats512 b, Floats512 c) {
+    constexpr int kDown = _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC;
+    return _mm512_cvt_roundps_epi32(_mm512_fmadd_round_ps(a, b, c, kDown), kDown);
+}
+
 #define SM2_BLOCK SM2_AVX512
 SM2_AVX512_CODE_BEGIN
 namespace unorm8 {
