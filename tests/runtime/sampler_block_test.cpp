@@ -1143,7 +1143,8 @@ TEST(SamplerBlockPath, EveryHalfDecodesToItsValue) {
 }
 
 // Every value of a signed (two's complement) field reads as D3D9's SNORM rule: s / (2^(n-1) - 1)
-// as IEEE division gives it, and -1 for s = -2^(n-1). V8U8's U (8 bits) and V16U16's U (16 bits).
+// as IEEE division gives it, and -1 for s = -2^(n-1). The U field of L6V5U5 (5 bits), V8U8 (8),
+// A2W10V10U10 (10) and V16U16 (16).
 void expect_every_signed_value(Format format, unsigned bits) {
     const uint32_t count = 1u << bits;
     const float max = static_cast<float>((1u << (bits - 1)) - 1u);
@@ -1155,7 +1156,9 @@ void expect_every_signed_value(Format format, unsigned bits) {
 }
 
 TEST(SamplerBlockPath, EverySignedFieldValueDecodesAsTheDivision) {
+    expect_every_signed_value(Format::L6V5U5, 5);
     expect_every_signed_value(Format::V8U8, 8);
+    expect_every_signed_value(Format::A2W10V10U10, 10);
     expect_every_signed_value(Format::V16U16, 16);
 }
 
