@@ -200,8 +200,9 @@ struct BlockChannel {
     unsigned shift = 0;  // within its word
     unsigned bits = 0;   // the field's width (Snorm: where its sign bit is)
     uint32_t mask = 0;   // 2^n - 1 for Unorm
-    float max = 1.0f;    // float(2^n - 1); Snorm: float(2^(n-1) - 1)
-    SplitReciprocal reciprocal;  // of max (unorm8::quotient_by())
+    // Of the field's maximum, 2^n - 1 (Snorm: 2^(n-1) - 1), which a decode divides by
+    // (unorm8::quotient_by()).
+    SplitReciprocal reciprocal;
     // Unorm fields of up to 5 bits: (v & mask) / max for every 5-bit v, so that a decode is one
     // permute by the bits from the field up (the bits above it index copies of the same values)
     // instead of a mask, a conversion and a corrected quotient.
@@ -782,10 +783,10 @@ std::optional<BlockFormat> block_format(Format f) {
             b.high = ch.shift / 32;
             b.shift = ch.shift % 32;
             b.mask = (1u << ch.bits) - 1u;
-            b.max = static_cast<float>(b.mask);
-            b.reciprocal = split_reciprocal(b.max);
+            b.reciprocal = split_reciprocal(b.mask);
             if (b.mask < b.decoded.size())
-                for (uint32_t v = 0; v < b.decoded.size(); ++v) b.decoded[v] = static_cast<float>(v & b.mask) / b.max;
+                for (uint32_t v = 0; v < b.decoded.size(); ++v)
+                    b.decoded[v] = static_cast<float>(v & b.mask) / static_cast<float>(b.mask);
             break;
         case layout::Type::Snorm:
             if (ch.bits < 2 || ch.bits > 16 || ch.shift % 32 + ch.bits > 32) return std::nullopt;
@@ -793,8 +794,7 @@ std::optional<BlockFormat> block_format(Format f) {
             b.high = ch.shift / 32;
             b.shift = ch.shift % 32;
             b.bits = ch.bits;
-            b.max = static_cast<float>((1u << (ch.bits - 1)) - 1u);
-            b.reciprocal = split_reciprocal(b.max);
+            b.reciprocal = split_reciprocal((1u << (ch.bits - 1)) - 1u);
             break;
         case layout::Type::Half:
             if (ch.bits != 16 || ch.shift % 32 + 16 > 32) return std::nullopt;
