@@ -59,6 +59,7 @@
 #undef _mm512_extracti64x4_epi64
 #undef _mm512_fmadd_ps
 #undef _mm512_fnmadd_ps
+#undef _mm512_fmsub_ps
 #undef _mm512_i32gather_epi32
 #undef _mm512_i32gather_epi64
 #undef _mm512_i32gather_ps
@@ -313,6 +314,9 @@ SM2_AVX2_INLINE Floats512 _mm512_min_ps(Floats512 a, Floats512 b) { return {_mm2
 SM2_AVX2_INLINE Floats512 _mm512_max_ps(Floats512 a, Floats512 b) { return {_mm256_max_ps(a.lo, b.lo), _mm256_max_ps(a.hi, b.hi)}; }
 SM2_AVX2_INLINE Floats512 _mm512_fmadd_ps(Floats512 a, Floats512 b, Floats512 c) {
     return {_mm256_fmadd_ps(a.lo, b.lo, c.lo), _mm256_fmadd_ps(a.hi, b.hi, c.hi)};
+}
+SM2_AVX2_INLINE Floats512 _mm512_fmsub_ps(Floats512 a, Floats512 b, Floats512 c) {
+    return {_mm256_fmsub_ps(a.lo, b.lo, c.lo), _mm256_fmsub_ps(a.hi, b.hi, c.hi)};
 }
 SM2_AVX2_INLINE Floats512 _mm512_fnmadd_ps(Floats512 a, Floats512 b, Floats512 c) {
     return {_mm256_fnmadd_ps(a.lo, b.lo, c.lo), _mm256_fnmadd_ps(a.hi, b.hi, c.hi)};
@@ -848,6 +852,13 @@ SM2_AVX2_INLINE Ints512 floor_of_fmadd(Floats512 a, Floats512 b, Floats512 c) {
     const Floats512 k = _mm512_roundscale_ps(_mm512_fmadd_ps(a, b, c), _MM_FROUND_TO_NEG_INF);
     const Floats512 residual = _mm512_fmadd_ps(a, b, _mm512_sub_ps(c, k));
     return _mm512_add_epi32(_mm512_cvttps_epi32(k), _mm512_srai_epi32(_mm512_castps_si512(residual), 31));
+}
+
+// unorm8_avx512.h's nan_to_zero(): MAXPS(v, 0) + MINPS(v, 0) is v for every v but NaN, which
+// both turn into their second operand, +0 (and -0 into +0).
+SM2_AVX2_INLINE Floats512 nan_to_zero(Floats512 v) {
+    const Floats512 zero = _mm512_setzero_ps();
+    return _mm512_add_ps(_mm512_max_ps(v, zero), _mm512_min_ps(v, zero));
 }
 
 // unorm8_avx512.h's conversions, for the AVX2 instances.

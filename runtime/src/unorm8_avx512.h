@@ -115,6 +115,16 @@ SM2_AVX512 __attribute__((always_inline)) inline Ints512 floor_of_fmadd(Floats51
     return _mm512_cvt_roundps_epi32(_mm512_fmadd_round_ps(a, b, c, kDown), kDown);
 }
 
+// v with NaN replaced by +0 (texel_space()'s no_nan()), every other value as it is: one
+// VFIXUPIMMPS, whose table maps the two NaN classes to +0 and the six others to v (the AVX2
+// instance takes MAXPS(v, 0) + MINPS(v, 0), which turns -0 into +0 too).
+SM2_AVX512 __attribute__((always_inline)) inline Floats512 nan_to_zero(Floats512 v) {
+    // One 4-bit token per input class, from bit 0: QNaN, SNaN, +-0, +1, -inf, +inf, negative,
+    // positive; token 8 is +0, token 1 the input.
+    constexpr int kNanToZero = 0x11111188;
+    return _mm512_fixupimm_ps(v, v, _mm512_set1_epi32(kNanToZero), 0);
+}
+
 #define SM2_BLOCK SM2_AVX512
 SM2_AVX512_CODE_BEGIN
 namespace unorm8 {
