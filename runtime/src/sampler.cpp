@@ -252,6 +252,11 @@ struct TextureSampler::BlockLevels {
     // Bit k: the filter sums channel k exactly (exact_bilinear()): fixed8 weights on a UNORM
     // field of at most 8 bits, not sRGB-decoded. Set once here, not tested per lookup.
     unsigned exact_channels = 0;
+    // These levels are 2D with 4-byte texels of 8-bit fields (`bytes`) and 32-bit offsets, and
+    // every filtered channel is summed exactly: block_exact_pairs() alone filters a lookup
+    // without BORDER taps (the AVX-512 instance then takes both levels of a trilinear one at
+    // once, block_exact_trilinear()).
+    bool exact_2d = false;
     // For 4-byte texels of 8-bit fields summed exactly (block_exact_pairs()): the byte shuffles
     // that widen a lane's two texels of a row (one 64-bit word: the first texel in its low 4
     // bytes) into 16-bit pairs (first, second), channel k's pair in 32-bit word k of the lane's
@@ -936,6 +941,8 @@ bool block_supported(const Context& c, BlockLevels& levels) {
         }
     levels.context = c;
     levels.context.pow2_levels = all_pow2;
+    levels.exact_2d = levels.bytes && levels.flat_bytes == 4 && levels.offsets32 && levels.exact_channels != 0 &&
+                      (levels.filtered & ~levels.exact_channels) == 0;
     return true;
 }
 

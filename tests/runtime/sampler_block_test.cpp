@@ -916,11 +916,12 @@ TEST(SamplerBlockPath, BilinearCentreOfA2x2Texture) {
 }
 
 // Calls check(block, lanes, label) for `texture` sampled at stage 0 with `filter` as MIN and MAG
-// filter (no mip), under CLAMP and WRAP, with 32-bit offsets and with 64-bit addresses, in each
+// filter and `mip` as MIP filter (none unless given), under CLAMP and WRAP, with 32-bit offsets and with 64-bit addresses, in each
 // instance the CPU runs: `block` on the block path, `lanes` on the per-lane path (the
 // reference), `label` naming the set-up for a failure's message.
 template <typename Check>
-void for_each_level_setup(const Texture& texture, TextureFilter filter, Check&& check) {
+void for_each_level_setup(const Texture& texture, TextureFilter filter, Check&& check,
+                          TextureFilter mip = TextureFilter::None) {
     for (const bool addresses64 : {false, true})
         for (const bool avx2 : forced_avx2_choices()) {
             TextureSampler block, lanes;
@@ -931,7 +932,7 @@ void for_each_level_setup(const Texture& texture, TextureFilter filter, Check&& 
             lanes.set_block_path(false);
             SamplerState state;
             state.mag_filter = state.min_filter = filter;
-            state.mip_filter = TextureFilter::None;
+            state.mip_filter = mip;
             for (const TextureAddress mode : {TextureAddress::Clamp, TextureAddress::Wrap}) {
                 state.address_u = state.address_v = mode;
                 for (TextureSampler* s : {&block, &lanes}) s->set_state(0, state);
@@ -1003,6 +1004,38 @@ TEST(SamplerBlockPath, BilinearLookupsOfScreenAlignedBatchesReadTheirTexelWindow
                             << "step " << step << " shear " << shear << " at " << x0 << ", " << y0 << " " << label;
                     }
     });
+}
+
+// Trilinear lookups of screen-aligned batches between two levels on every lane, at 1.1 to 3.6
+// texels a pixel of level 0 (LOD fractions of levels 0-1 and 1-2), from every position of the
+// level and past its edges, with and without shear: the AVX-512 instance sums both levels of
+// such batches at once (block_exact_trilinear(), with 32-bit offsets), each level's taps from its
+// window or lane by lane; the same bits as the per-lane path, and as two filter calls (64-bit
+// addresses, the AVX2 instance).
+TEST(SamplerBlockPath, TrilinearLookupsOfScreenAlignedBatchesMatchThePerLanePath) {
+    std::mt19937 rng(20261206);
+    const Texture texture = random_texture(rng, Format::A8R8G8B8, 64, 32, 0);  // every level
+    for_each_level_setup(
+        texture, TextureFilter::Linear,
+        [&](TextureSampler& block, TextureSampler& lanes, const std::string& label) {
+            for (const float step : {1.1f, 1.5f, 1.9f, 2.3f, 3.6f})
+                for (const float shear : {0.0f, 0.4f})
+                    for (int y0 = -5; y0 < 36; y0 += 4)
+                        for (int x0 = -5; x0 < 68; x0 += 2) {
+                            std::array<emu::FloatLanes, 4> coords{};
+                            const float fraction = static_cast<float>(rng() % 256) / 256.0f;
+                            for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
+                                const float px = static_cast<float>(2 * (l / 4) + (l & 1u)), py = static_cast<float>((l >> 1) & 1u);
+                                coords[0][l] = (static_cast<float>(x0) + fraction + px * step) / 64.0f;
+                                coords[1][l] = (static_cast<float>(y0) + fraction + py * step + px * shear) / 32.0f;
+                            }
+                            emu::TextureRequest request;
+                            request.coordinates = &coords;
+                            ASSERT_TRUE(same_texels(block, lanes, request, true))
+                                << "step " << step << " shear " << shear << " at " << x0 << ", " << y0 << " " << label;
+                        }
+        },
+        TextureFilter::Linear);
 }
 
 // Trilinear volume lookups of 8x2-pixel batches stepping through the volume along a tilted
