@@ -255,7 +255,7 @@ struct TextureSampler::BlockLevels {
     // These levels are 2D with 4-byte texels of 8-bit fields (`bytes`) and 32-bit offsets, and
     // every filtered channel is summed exactly: block_exact_pairs() alone filters a lookup
     // without BORDER taps (the AVX-512 instance then reads its levels inline,
-    // block_exact_levels()).
+    // block_exact_levels()). Set once here, not tested per lookup.
     bool exact_2d = false;
     // For 4-byte texels of 8-bit fields summed exactly (block_exact_pairs()): the byte shuffles
     // that widen a lane's two texels of a row (one 64-bit word: the first texel in its low 4

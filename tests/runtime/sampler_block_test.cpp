@@ -916,9 +916,9 @@ TEST(SamplerBlockPath, BilinearCentreOfA2x2Texture) {
 }
 
 // Calls check(block, lanes, label) for `texture` sampled at stage 0 with `filter` as MIN and MAG
-// filter and `mip` as MIP filter (none unless given), under CLAMP and WRAP, with 32-bit offsets and with 64-bit addresses, in each
-// instance the CPU runs: `block` on the block path, `lanes` on the per-lane path (the
-// reference), `label` naming the set-up for a failure's message.
+// filter and `mip` as MIP filter (none unless given), under CLAMP and WRAP, with 32-bit offsets
+// and with 64-bit addresses, in each instance the CPU runs: `block` on the block path, `lanes` on
+// the per-lane path (the reference), `label` naming the set-up for a failure's message.
 template <typename Check>
 void for_each_level_setup(const Texture& texture, TextureFilter filter, Check&& check,
                           TextureFilter mip = TextureFilter::None) {
@@ -1025,7 +1025,8 @@ TEST(SamplerBlockPath, TrilinearLookupsOfScreenAlignedBatchesMatchThePerLanePath
                             std::array<emu::FloatLanes, 4> coords{};
                             const float fraction = static_cast<float>(rng() % 256) / 256.0f;
                             for (unsigned l = 0; l < emu::kBatchLanes; ++l) {
-                                const float px = static_cast<float>(2 * (l / 4) + (l & 1u)), py = static_cast<float>((l >> 1) & 1u);
+                                const float px = static_cast<float>(2 * (l / 4) + (l & 1u));
+                                const float py = static_cast<float>((l >> 1) & 1u);
                                 coords[0][l] = (static_cast<float>(x0) + fraction + px * step) / 64.0f;
                                 coords[1][l] = (static_cast<float>(y0) + fraction + py * step + px * shear) / 32.0f;
                             }
