@@ -153,6 +153,8 @@
 #undef _mm512_shuffle_epi8
 #undef _mm512_shuffle_epi32
 #undef _mm512_madd_epi16
+#undef _mm512_mullo_epi16
+#undef _mm512_srli_epi16
 #undef _mm512_unpacklo_epi32
 #undef _mm512_unpackhi_epi32
 #undef _mm512_unpacklo_epi64
@@ -377,6 +379,13 @@ SM2_AVX2_INLINE Ints512 _mm512_shuffle_epi8(Ints512 a, Ints512 idx) {
 }
 SM2_AVX2_INLINE Ints512 _mm512_madd_epi16(Ints512 a, Ints512 b) {
     return {_mm256_madd_epi16(a.lo, b.lo), _mm256_madd_epi16(a.hi, b.hi)};
+}
+SM2_AVX2_INLINE Ints512 _mm512_mullo_epi16(Ints512 a, Ints512 b) {
+    return {_mm256_mullo_epi16(a.lo, b.lo), _mm256_mullo_epi16(a.hi, b.hi)};
+}
+SM2_AVX2_INLINE Ints512 _mm512_srli_epi16(Ints512 a, unsigned count) {
+    const __m128i n = _mm_cvtsi32_si128(static_cast<int>(count));
+    return {_mm256_srl_epi16(a.lo, n), _mm256_srl_epi16(a.hi, n)};
 }
 SM2_AVX2_INLINE Ints512 _mm512_unpacklo_epi32(Ints512 a, Ints512 b) {
     return {_mm256_unpacklo_epi32(a.lo, b.lo), _mm256_unpacklo_epi32(a.hi, b.hi)};

@@ -257,12 +257,9 @@ struct TextureSampler::BlockLevels {
     // without BORDER taps (the AVX-512 instance then reads its levels inline,
     // block_exact_levels()). Set once here, not tested per lookup.
     bool exact_2d = false;
-    // For 4-byte texels of 8-bit fields summed exactly (block_exact_pairs()): the byte shuffles
-    // that widen a lane's two texels of a row (one 64-bit word: the first texel in its low 4
-    // bytes) into 16-bit pairs (first, second), channel k's pair in 32-bit word k of the lane's
-    // 128-bit block; `pair_shuffle` reads the 64-bit word in bytes 0-7 of each block,
-    // `pair_shuffle + 64` the one in bytes 8-15. A channel without an exact sum gives (0, 0).
-    alignas(64) std::array<uint8_t, 128> pair_shuffle{};
+    // For 4-byte texels of 8-bit fields summed exactly (block_exact_pairs()): the byte of the
+    // texel that channel k of exact_channels reads.
+    std::array<uint8_t, 4> exact_byte{};
     // Channel k filters to what channel copy_of[k] filters to: an earlier channel decoded from
     // the same field in the same way, with the same BORDERCOLOR channel and sRGB read (L8 and
     // A8L8 give red, green and blue from one field). Only the channels of `filtered` (those with
@@ -856,18 +853,10 @@ bool block_supported(const Context& c, BlockLevels& levels) {
         if (c.fixed && !c.srgb && !c.decoded_dxt && ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 0xFFu)
             levels.exact_channels |= 1u << k;
     }
-    levels.pair_shuffle.fill(0x80);  // (an index with bit 7 set gives a 0 byte)
+    levels.exact_byte = {};
     if (levels.bytes)
-        for (unsigned k = 0; k < 4; ++k) {
-            if (!(levels.exact_channels >> k & 1u)) continue;
-            const auto byte = static_cast<uint8_t>((*format)[k].shift / 8);
-            for (unsigned block = 0; block < 4; ++block)
-                for (unsigned word = 0; word < 2; ++word) {
-                    const unsigned at = 64 * word + 16 * block + 4 * k;
-                    levels.pair_shuffle[at] = static_cast<uint8_t>(8 * word + byte);          // the first texel's
-                    levels.pair_shuffle[at + 2] = static_cast<uint8_t>(8 * word + 4 + byte);  // the second's
-                }
-        }
+        for (unsigned k = 0; k < 4; ++k)
+            if (levels.exact_channels >> k & 1u) levels.exact_byte[k] = static_cast<uint8_t>((*format)[k].shift / 8);
     const bool reads_border = std::find(std::begin(c.address), std::end(c.address), TextureAddress::Border) != std::end(c.address);
     for (unsigned k = 1; k < 4; ++k) {
         const BlockChannel& ch = (*format)[k];

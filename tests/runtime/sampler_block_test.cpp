@@ -978,8 +978,8 @@ TEST(SamplerBlockPath, PointLookupsOfScreenAlignedBatchesReadTheirTexelRows) {
 
 // Bilinear lookups of 8x2-pixel batches at pixel steps of 0.5 to 2.5 texels, forwards and
 // mirrored, screen-aligned and sheared (v growing along the batch's rows too), at every column
-// and row of the level and past its edges: the AVX-512 instance reads the texel pairs of such
-// batches from a window of four rows (block_window_pairs; steps of 1.8 and 2 put a lane's taps
+// and row of the level and past its edges: the AVX-512 instance reads the texels of such
+// batches from a window of four rows (block_window_taps; steps of 1.8 and 2 put a lane's taps
 // two rows below lane 0's), clipped at the level's right edge and last rows, and the others by
 // loads; both must give the per-lane path's bits.
 TEST(SamplerBlockPath, BilinearLookupsOfScreenAlignedBatchesReadTheirTexelWindow) {
