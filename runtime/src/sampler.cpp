@@ -257,9 +257,6 @@ struct TextureSampler::BlockLevels {
     // without BORDER taps (the AVX-512 instance then reads its levels inline,
     // block_exact_levels()). Set once here, not tested per lookup.
     bool exact_2d = false;
-    // For 4-byte texels of 8-bit fields summed exactly (block_exact_pairs()): the byte of the
-    // texel that channel k of exact_channels reads.
-    std::array<uint8_t, 4> exact_byte{};
     // Channel k filters to what channel copy_of[k] filters to: an earlier channel decoded from
     // the same field in the same way, with the same BORDERCOLOR channel and sRGB read (L8 and
     // A8L8 give red, green and blue from one field). Only the channels of `filtered` (those with
@@ -853,10 +850,6 @@ bool block_supported(const Context& c, BlockLevels& levels) {
         if (c.fixed && !c.srgb && !c.decoded_dxt && ch.kind == BlockChannel::Kind::Unorm && ch.mask <= 0xFFu)
             levels.exact_channels |= 1u << k;
     }
-    levels.exact_byte = {};
-    if (levels.bytes)
-        for (unsigned k = 0; k < 4; ++k)
-            if (levels.exact_channels >> k & 1u) levels.exact_byte[k] = static_cast<uint8_t>((*format)[k].shift / 8);
     const bool reads_border = std::find(std::begin(c.address), std::end(c.address), TextureAddress::Border) != std::end(c.address);
     for (unsigned k = 1; k < 4; ++k) {
         const BlockChannel& ch = (*format)[k];
