@@ -1009,7 +1009,7 @@ TEST(SamplerBlockPath, BilinearLookupsOfScreenAlignedBatchesReadTheirTexelWindow
 // Trilinear lookups of screen-aligned batches between two levels on every lane, at 1.1 to 3.6
 // texels a pixel of level 0 (LOD fractions of levels 0-1 and 1-2), from every position of the
 // level and past its edges, with and without shear: the AVX-512 instance sums both levels of
-// such batches at once (block_exact_trilinear(), with 32-bit offsets), each level's taps from its
+// such batches at once (block_exact_levels<2>(), with 32-bit offsets), each level's taps from its
 // window or lane by lane; the same bits as the per-lane path, and as two filter calls (64-bit
 // addresses, the AVX2 instance).
 TEST(SamplerBlockPath, TrilinearLookupsOfScreenAlignedBatchesMatchThePerLanePath) {
